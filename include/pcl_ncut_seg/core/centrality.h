@@ -1,0 +1,41 @@
+/*
+ * pcl_ncut_seg: the feature-identifying function of Sec. 4.1 (centrality), eq. (1).
+ */
+#pragma once
+
+#include <pcl_ncut_seg/core/csr_graph.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+/** \brief Output of computeCentrality(). */
+struct Centrality {
+  std::vector<float> f;                ///< per vertex, mean geodesic distance to the samples, eq. (1)
+  std::vector<std::uint32_t> samples;  ///< the farthest-point samples U, in the order chosen
+  std::vector<std::uint32_t> component; ///< per vertex, its connected component
+  std::size_t num_components = 0;
+};
+
+/** \brief Approximate centrality f(p) = 1/|U| sum_{q in U} g(p, q) (eq. 1).
+ *
+ * Each connected component is treated as its own surface: it gets ceil(sqrt(n_c)) samples (or
+ * the given number, capped at n_c), chosen by farthest-point sampling on graph distance, and f is
+ * averaged over the samples of the vertex's component only. The first sample of a component is
+ * the vertex farthest from its smallest-index vertex (ties: smallest index), so the choice is
+ * deterministic. Sampling uses bounded Dijkstra searches; the full searches for the sums run in
+ * parallel and are summed in fixed point, so f is bit-identical for any number of threads.
+ *
+ * \param[in] graph        the kNN graph
+ * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))
+ * \param[in] num_threads  threads for the full searches; 0 = all available
+ */
+Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples,
+                             unsigned num_threads);
+
+/** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
+ * Unreachable vertices get +infinity. */
+std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source);
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,51 @@
+/*
+ * pcl_ncut_seg: the weighted graph of supernodes G_s (Sec. 5.1, Fig. 6, eqs. 7-9).
+ */
+#pragma once
+
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/refinement.h>
+#include <pcl_ncut_seg/core/supernodes.h>
+
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+/** \brief conn(s_i, s_j) of eq. (8) for every pair of supernodes joined by a kNN edge
+ * (including i == j), keyed (min, max). */
+using Connectivity = std::map<std::pair<std::uint32_t, std::uint32_t>, double>;
+
+Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<float>& f,
+                                   const std::vector<std::uint32_t>& label);
+
+/** \brief Weighted undirected graph over 2l vertices: r_i = i, m_i = l + i. */
+struct WeightedGraph {
+  std::size_t num_vertices = 0;
+  struct Edge {
+    std::uint32_t a, b;
+    double w;
+  };
+  std::vector<Edge> edges;
+};
+
+struct SimilarityParams {
+  double beta = 2.0;   ///< eq. (7)
+  double alpha1 = 2.0; ///< eq. (9)
+  double alpha2 = 0.5; ///< alpha_ij = alpha2 * min(f_w) / max(f_w)
+  /// Feature width divided by sqrt(total feature area), so eq. (7) does not change with units.
+  bool normalize_width = true;
+  /// Join member-vertex trees that share no saddle but touch in the kNN graph (see README).
+  bool connect_adjacent_trees = true;
+};
+
+/** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created
+ * at the saddle where s_j terminates (or vice versa); with connect_adjacent_trees, also the
+ * most connected kNN-adjacent pair between member trees that no saddle joins, weighted by (9).
+ */
+WeightedGraph buildSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
+                                  const Connectivity& conn, const SimilarityParams& params);
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,51 @@
+/*
+ * pcl_ncut_seg: supernode extraction with saddles and the 0.3 rule (Sec. 4.2).
+ */
+#pragma once
+
+#include <pcl_ncut_seg/core/csr_graph.h>
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+/** \brief A set of supernodes and the saddle relations between them.
+ *
+ * A supernode is either born at a local maximum of f (saddle == kNone) or created at a saddle
+ * point, where the supernodes in children[] terminate (Fig. 6). parent[s] is the supernode
+ * created at the saddle where s terminates (kNone if s never meets another).
+ */
+struct Supernodes {
+  std::vector<std::uint32_t> label;  ///< per point, its supernode
+  std::vector<std::uint32_t> origin; ///< per supernode, its local maximum or saddle point
+  std::vector<bool> at_saddle;       ///< per supernode, created at a saddle point
+  std::vector<std::uint32_t> parent; ///< per supernode, see above
+  std::vector<std::vector<std::uint32_t>> children; ///< per supernode, see above
+
+  std::size_t size() const { return origin.size(); }
+  std::vector<std::uint32_t> localMaxima() const; ///< points where a supernode was born
+  std::vector<std::uint32_t> saddles() const;     ///< points where a supernode was created
+};
+
+/** \brief Extract supernodes (Sec. 4.2) by processing points in descending f.
+ *
+ * Ties in f are broken by index (lower index first), so a point is a local maximum iff it
+ * precedes all its neighbours in that order. For each other point p, M(p) holds its processed
+ * neighbours; supernodes with fewer than crossing_fraction * |N(p)| of them are dropped as
+ * reached through feature-crossing edges (rule (b)); one remaining supernode takes p (c), more
+ * than one make p a saddle and create a new supernode (d) to which the merged ones redirect.
+ * When rule (b) drops every supernode (the text gives no rule), p follows its steepest ascent:
+ * the supernode of argmax_{q in M(p)} z(p, q).
+ *
+ * \param[in] graph              kNN graph; N(p) is p's neighbourhood in it
+ * \param[in] f                  centrality per point
+ * \param[in] crossing_fraction  the fraction of rule (b), 0.3 in the paper
+ */
+Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
+                             float crossing_fraction);
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,447 @@
+/*
+ * pcl_ncut_seg: the PCL front end. It checks the input, builds the kNN graph with the search
+ * method, and hands plain arrays to the pipeline in pcl_ncut_seg/core.
+ */
+#pragma once
+
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include <pcl/common/point_tests.h>
+#include <pcl/console/print.h>
+#include <pcl/search/kdtree.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+template <typename PointT>
+pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
+
+template <typename PointT>
+pcl::SupernodeNCutSegmentation<PointT>::~SupernodeNCutSegmentation() = default;
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::invalidate() {
+  analysis_.reset();
+  point_index_.clear();
+  result_ = pcl_ncut_seg::CutResult();
+  have_result_ = false;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setInputCloud(const PointCloudConstPtr& cloud) {
+  PCLBase<PointT>::setInputCloud(cloud);
+  invalidate();
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setIndices(const IndicesPtr& indices) {
+  PCLBase<PointT>::setIndices(indices);
+  invalidate();
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setIndices(const IndicesConstPtr& indices) {
+  PCLBase<PointT>::setIndices(indices);
+  invalidate();
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setIndices(const PointIndicesConstPtr& indices) {
+  PCLBase<PointT>::setIndices(indices);
+  invalidate();
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setSearchMethod(const KdTreePtr& search) {
+  search_ = search;
+  invalidate();
+}
+
+// Setters: reject bad values with PCL_ERROR and keep the old value. Analysis parameters
+// invalidate the expensive stage; cut parameters do not.
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfNeighbours(int k) {
+  if (k < 2) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfNeighbours] k must be >= 2, got "
+              "%d; keeping %d.\n",
+              k, k_);
+    return;
+  }
+  if (k != k_)
+    invalidate();
+  k_ = k;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSamples(int samples) {
+  if (samples < 0) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSamples] samples must be >= 0 (0: "
+              "ceil(sqrt(n))), got %d; keeping %d.\n",
+              samples, num_samples_);
+    return;
+  }
+  if (samples != num_samples_)
+    invalidate();
+  num_samples_ = samples;
+}
+
+namespace pcl {
+namespace ncut_detail {
+inline bool checkFraction(const char* method, float value, float old) {
+  if (!(value >= 0.0f && value <= 1.0f)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::%s] fraction must be in [0, 1], got %g; "
+              "keeping %g.\n",
+              method, value, old);
+    return false;
+  }
+  return true;
+}
+inline bool checkPositive(const char* method, double value, double old) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::%s] value must be finite and > 0, got %g; "
+              "keeping %g.\n",
+              method, value, old);
+    return false;
+  }
+  return true;
+}
+} // namespace ncut_detail
+} // namespace pcl
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setCrossingFraction(float fraction) {
+  if (!ncut_detail::checkFraction("setCrossingFraction", fraction, crossing_fraction_))
+    return;
+  if (fraction != crossing_fraction_)
+    invalidate();
+  crossing_fraction_ = fraction;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setAreaFraction(float fraction) {
+  if (!ncut_detail::checkFraction("setAreaFraction", fraction, area_fraction_))
+    return;
+  if (fraction != area_fraction_)
+    invalidate();
+  area_fraction_ = fraction;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setHeightFraction(float fraction) {
+  if (!ncut_detail::checkFraction("setHeightFraction", fraction, height_fraction_))
+    return;
+  if (fraction != height_fraction_)
+    invalidate();
+  height_fraction_ = fraction;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setBeta(double beta) {
+  if (ncut_detail::checkPositive("setBeta", beta, similarity_.beta))
+    similarity_.beta = beta;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setAlpha1(double alpha1) {
+  if (ncut_detail::checkPositive("setAlpha1", alpha1, similarity_.alpha1))
+    similarity_.alpha1 = alpha1;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setAlpha2(double alpha2) {
+  if (ncut_detail::checkPositive("setAlpha2", alpha2, similarity_.alpha2))
+    similarity_.alpha2 = alpha2;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setThreshold(double threshold) {
+  if (!(threshold >= 0.0) || !std::isfinite(threshold)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setThreshold] threshold must be finite and >= "
+              "0, got %g; keeping %g.\n",
+              threshold, cut_.threshold);
+    return;
+  }
+  cut_.threshold = threshold;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
+  if (segments < 0) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSegments] segments must be >= 0 "
+              "(0: use the threshold), got %d; keeping %d.\n",
+              segments, cut_.num_segments);
+    return;
+  }
+  cut_.num_segments = segments;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSplitValues(int values) {
+  if (values < 1) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSplitValues] values must be >= 1, "
+              "got %d; keeping %d.\n",
+              values, cut_.num_splits);
+    return;
+  }
+  cut_.num_splits = values;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNormalizeWidth(bool normalize) {
+  similarity_.normalize_width = normalize;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setConnectAdjacentTrees(bool connect) {
+  similarity_.connect_adjacent_trees = connect;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfThreads(unsigned threads) {
+  num_threads_ = threads; // output does not depend on it, so nothing to invalidate
+}
+
+template <typename PointT>
+bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
+  const auto start = std::chrono::steady_clock::now();
+  // Valid points: in range, finite, each once; sorted so that graph order is cloud order.
+  const std::size_t cloud_size = input_->size();
+  std::vector<int> valid;
+  valid.reserve(indices_->size());
+  for (const auto idx : *indices_) {
+    if (idx < 0 || static_cast<std::size_t>(idx) >= cloud_size) {
+      PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] index %d is out of range for a "
+                "cloud of %zu points.\n",
+                static_cast<int>(idx), cloud_size);
+      return false;
+    }
+    if (pcl::isXYZFinite((*input_)[idx]))
+      valid.push_back(static_cast<int>(idx));
+  }
+  std::sort(valid.begin(), valid.end());
+  const std::size_t before = valid.size();
+  valid.erase(std::unique(valid.begin(), valid.end()), valid.end());
+  if (valid.size() < before)
+    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] %zu repeated indices ignored.\n",
+             before - valid.size());
+  const std::size_t n = valid.size();
+  if (n == 0) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point.\n");
+    return false;
+  }
+  if (n > std::numeric_limits<std::uint32_t>::max() / 64) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] too many points (%zu).\n", n);
+    return false;
+  }
+
+  // Coordinates relative to the centroid, in double first, so that a model far from the
+  // origin keeps its float precision.
+  double c[3] = {0, 0, 0};
+  for (int idx : valid) {
+    c[0] += (*input_)[idx].x;
+    c[1] += (*input_)[idx].y;
+    c[2] += (*input_)[idx].z;
+  }
+  for (double& v : c)
+    v /= static_cast<double>(n);
+  std::vector<float> xyz(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointT& p = (*input_)[valid[i]];
+    xyz[3 * i + 0] = static_cast<float>(p.x - c[0]);
+    xyz[3 * i + 1] = static_cast<float>(p.y - c[1]);
+    xyz[3 * i + 2] = static_cast<float>(p.z - c[2]);
+  }
+
+  // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points).
+  const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(k_), n - 1);
+  if (k < static_cast<std::size_t>(k_))
+    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] only %zu points: using %zu "
+             "neighbours instead of %d.\n",
+             n, k, k_);
+  std::vector<std::uint32_t> knn(n * std::max<std::size_t>(k, 1),
+                                 std::numeric_limits<std::uint32_t>::max());
+  if (k > 0) {
+    if (!search_)
+      search_.reset(new pcl::search::KdTree<PointT>(false));
+    pcl::IndicesPtr valid_ptr(new pcl::Indices(valid.begin(), valid.end()));
+    search_->setInputCloud(input_, valid_ptr);
+    std::vector<std::int64_t> local(cloud_size, -1);
+    for (std::size_t i = 0; i < n; ++i)
+      local[valid[i]] = static_cast<std::int64_t>(i);
+    pcl::Indices nn;
+    std::vector<float> sqr;
+    for (std::size_t i = 0; i < n; ++i) {
+      nn.clear();
+      search_->nearestKSearch((*input_)[valid[i]], static_cast<int>(k + 1), nn, sqr);
+      std::size_t j = 0;
+      for (const auto q : nn) {
+        if (j == k)
+          break;
+        if (q < 0 || static_cast<std::size_t>(q) >= cloud_size)
+          continue;
+        const std::int64_t lq = local[q];
+        if (lq < 0 || static_cast<std::size_t>(lq) == i)
+          continue;
+        knn[i * k + j++] = static_cast<std::uint32_t>(lq);
+      }
+    }
+  }
+  pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+  times_ = pcl_ncut_seg::PhaseTimes();
+  times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  pcl_ncut_seg::AnalysisParams params;
+  params.num_samples = static_cast<std::size_t>(num_samples_);
+  params.crossing_fraction = crossing_fraction_;
+  params.refinement.area_fraction = area_fraction_;
+  params.refinement.height_fraction = height_fraction_;
+  params.num_threads = num_threads_;
+  analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
+      pcl_ncut_seg::analyze(std::move(graph), params, times_));
+  point_index_ = std::move(valid);
+  return true;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndices>& segments) {
+  segments.clear();
+  have_result_ = false;
+  if (!initCompute()) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] no input cloud.\n");
+    return;
+  }
+  if (!analysis_ && !analyze()) {
+    invalidate();
+    deinitCompute();
+    return;
+  }
+  result_ = pcl_ncut_seg::cut(*analysis_, similarity_, cut_, times_);
+  segments.resize(result_.num_segments);
+  for (std::size_t i = 0; i < point_index_.size(); ++i)
+    segments[result_.point_segment[i]].indices.push_back(point_index_[i]);
+  for (auto& s : segments)
+    s.header = input_->header;
+  have_result_ = true;
+  deinitCompute();
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::segmentColor(std::size_t i, std::uint8_t& r,
+                                                          std::uint8_t& g, std::uint8_t& b) {
+  // Golden-ratio hue steps: neighbouring ids get far-apart hues; value cycles for many ids.
+  const double h = std::fmod(0.1 + 0.618033988749895 * static_cast<double>(i), 1.0) * 6.0;
+  const double s = 0.75, v = (i / 7) % 2 ? 0.7 : 0.95;
+  const int sector = static_cast<int>(h);
+  const double frac = h - sector;
+  const double p = v * (1 - s), q = v * (1 - s * frac), t = v * (1 - s * (1 - frac));
+  double rgb[3];
+  switch (sector) {
+  case 0: rgb[0] = v, rgb[1] = t, rgb[2] = p; break;
+  case 1: rgb[0] = q, rgb[1] = v, rgb[2] = p; break;
+  case 2: rgb[0] = p, rgb[1] = v, rgb[2] = t; break;
+  case 3: rgb[0] = p, rgb[1] = q, rgb[2] = v; break;
+  case 4: rgb[0] = t, rgb[1] = p, rgb[2] = v; break;
+  default: rgb[0] = v, rgb[1] = p, rgb[2] = q; break;
+  }
+  r = static_cast<std::uint8_t>(std::lround(rgb[0] * 255));
+  g = static_cast<std::uint8_t>(std::lround(rgb[1] * 255));
+  b = static_cast<std::uint8_t>(std::lround(rgb[2] * 255));
+}
+
+template <typename PointT>
+pcl::PointCloud<pcl::PointXYZRGB>::Ptr
+pcl::SupernodeNCutSegmentation<PointT>::getColoredCloud() const {
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr out(new pcl::PointCloud<pcl::PointXYZRGB>);
+  if (!have_result_ || !input_)
+    return out;
+  out->header = input_->header;
+  out->width = input_->width;
+  out->height = input_->height;
+  out->is_dense = input_->is_dense;
+  out->resize(input_->size());
+  for (std::size_t i = 0; i < input_->size(); ++i) {
+    auto& q = (*out)[i];
+    q.x = (*input_)[i].x;
+    q.y = (*input_)[i].y;
+    q.z = (*input_)[i].z;
+    q.r = q.g = q.b = 0;
+  }
+  for (std::size_t i = 0; i < point_index_.size(); ++i) {
+    auto& q = (*out)[point_index_[i]];
+    segmentColor(result_.point_segment[i], q.r, q.g, q.b);
+  }
+  return out;
+}
+
+template <typename PointT>
+pcl::PointCloud<pcl::PointXYZL>::Ptr
+pcl::SupernodeNCutSegmentation<PointT>::getLabeledCloud() const {
+  pcl::PointCloud<pcl::PointXYZL>::Ptr out(new pcl::PointCloud<pcl::PointXYZL>);
+  if (!have_result_ || !input_)
+    return out;
+  out->header = input_->header;
+  out->width = input_->width;
+  out->height = input_->height;
+  out->is_dense = input_->is_dense;
+  out->resize(input_->size());
+  for (std::size_t i = 0; i < input_->size(); ++i) {
+    auto& q = (*out)[i];
+    q.x = (*input_)[i].x;
+    q.y = (*input_)[i].y;
+    q.z = (*input_)[i].z;
+    q.label = 0;
+  }
+  for (std::size_t i = 0; i < point_index_.size(); ++i)
+    (*out)[point_index_[i]].label = result_.point_segment[i] + 1;
+  return out;
+}
+
+template <typename PointT>
+std::vector<float> pcl::SupernodeNCutSegmentation<PointT>::getCentrality() const {
+  std::vector<float> out(input_ ? input_->size() : 0, std::numeric_limits<float>::quiet_NaN());
+  if (analysis_)
+    for (std::size_t i = 0; i < point_index_.size(); ++i)
+      out[point_index_[i]] = analysis_->centrality.f[i];
+  return out;
+}
+
+template <typename PointT>
+std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getLocalMaxima() const {
+  std::vector<int> out;
+  if (analysis_)
+    for (std::uint32_t v : analysis_->raw_supernodes.localMaxima())
+      out.push_back(point_index_[v]);
+  return out;
+}
+
+template <typename PointT>
+std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSaddles() const {
+  std::vector<int> out;
+  if (analysis_)
+    for (std::uint32_t v : analysis_->raw_supernodes.saddles())
+      out.push_back(point_index_[v]);
+  return out;
+}
+
+template <typename PointT>
+std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSupernodeLabels(bool refined) const {
+  std::vector<int> out(input_ ? input_->size() : 0, -1);
+  if (analysis_) {
+    const auto& label = refined ? analysis_->supernodes.label : analysis_->raw_supernodes.label;
+    for (std::size_t i = 0; i < point_index_.size(); ++i)
+      out[point_index_[i]] = static_cast<int>(label[i]);
+  }
+  return out;
+}
+
+template <typename PointT>
+std::size_t pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSupernodes(bool refined) const {
+  if (!analysis_)
+    return 0;
+  return refined ? analysis_->supernodes.size() : analysis_->raw_supernodes.size();
+}
+
+#define PCL_INSTANTIATE_SupernodeNCutSegmentation(T)                                            \
+  template class PCL_EXPORTS pcl::SupernodeNCutSegmentation<T>;

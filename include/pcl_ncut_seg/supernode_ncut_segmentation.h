@@ -1,0 +1,209 @@
+/*
+ * pcl_ncut_seg: part segmentation of point-sampled surfaces.
+ *
+ * Implements I. Yamazaki, V. Natarajan, Z. Bai, B. Hamann, "Segmenting Point-sampled Surfaces":
+ * centrality from geodesic distances on a kNN graph (Sec. 4.1), supernodes from its gradient
+ * flow with saddles (4.2), local refinement (4.3), then recursive normalized-cut bisection of a
+ * graph of supernodes (5).
+ */
+#pragma once
+
+#include <pcl/pcl_base.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/PointIndices.h>
+#include <pcl/search/search.h>
+
+#include <pcl_ncut_seg/core/pipeline.h>
+
+#include <memory>
+#include <vector>
+
+namespace pcl {
+
+/** \brief Segments a point-sampled surface into parts (the fingers of a hand, the legs of a
+ * horse) with the method of Yamazaki et al., "Segmenting Point-sampled Surfaces".
+ *
+ * Usage:
+ * \code
+ * pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+ * seg.setInputCloud(cloud);
+ * seg.setNumberOfNeighbours(10);
+ * std::vector<pcl::PointIndices> segments;
+ * seg.extract(segments);
+ * \endcode
+ *
+ * The work runs in two stages. The expensive one (kNN graph, centrality, supernodes and their
+ * refinement) is computed once per input; changing only the cut parameters (threshold, number
+ * of segments, alpha1, alpha2, beta, split values) and calling extract() again reuses it.
+ * A new input cloud, new indices, a new search method or a change of any analysis parameter
+ * invalidates it.
+ *
+ * Points with a non-finite coordinate are in no segment. Output indices refer to the input
+ * cloud, also when indices are set.
+ */
+template <typename PointT>
+class SupernodeNCutSegmentation : public pcl::PCLBase<PointT> {
+public:
+  using PointCloud = pcl::PointCloud<PointT>;
+  using PointCloudConstPtr = typename PointCloud::ConstPtr;
+  using KdTree = pcl::search::Search<PointT>;
+  using KdTreePtr = typename KdTree::Ptr;
+
+  using PCLBase<PointT>::input_;
+  using PCLBase<PointT>::indices_;
+  using PCLBase<PointT>::fake_indices_;
+  using PCLBase<PointT>::initCompute;
+  using PCLBase<PointT>::deinitCompute;
+
+  SupernodeNCutSegmentation();
+  ~SupernodeNCutSegmentation() override;
+
+  /** \brief Provide the input cloud; invalidates the expensive stage. */
+  void setInputCloud(const PointCloudConstPtr& cloud) override;
+  /** \brief Restrict the segmentation to these points; invalidates the expensive stage. */
+  void setIndices(const IndicesPtr& indices) override;
+  void setIndices(const IndicesConstPtr& indices) override;
+  void setIndices(const PointIndicesConstPtr& indices) override;
+
+  /** \brief Search method for the kNN graph (default: pcl::search::KdTree, i.e. FLANN). */
+  void setSearchMethod(const KdTreePtr& search);
+  KdTreePtr getSearchMethod() const { return search_; }
+
+  /** \brief k, the number of nearest neighbours of each point in the graph (default 10, >= 2).
+   * The graph is symmetric: p and q are joined if either is among the other's k nearest. */
+  void setNumberOfNeighbours(int k);
+  int getNumberOfNeighbours() const { return k_; }
+
+  /** \brief Centrality samples per connected component (Sec. 4.1); 0 (default) means
+   * ceil(sqrt(n)) as in the paper. */
+  void setNumberOfSamples(int samples);
+  int getNumberOfSamples() const { return num_samples_; }
+
+  /** \brief Fraction of |N(p)| below which a supernode's neighbours of p are taken as reached
+   * through feature-crossing edges (Sec. 4.2 (b)); default 0.3, in [0, 1]. */
+  void setCrossingFraction(float fraction);
+  float getCrossingFraction() const { return crossing_fraction_; }
+
+  /** \brief Small supernodes: feature area below this fraction of the total (default 0.01). */
+  void setAreaFraction(float fraction);
+  float getAreaFraction() const { return area_fraction_; }
+
+  /** \brief Skinny supernodes: feature height below this fraction of the largest (0.01). */
+  void setHeightFraction(float fraction);
+  float getHeightFraction() const { return height_fraction_; }
+
+  /** \brief beta of eq. (7), > 0 (default 2.0). */
+  void setBeta(double beta);
+  double getBeta() const { return similarity_.beta; }
+
+  /** \brief alpha1 of eq. (9), > 0 (default 2.0). */
+  void setAlpha1(double alpha1);
+  double getAlpha1() const { return similarity_.alpha1; }
+
+  /** \brief alpha2 of eq. (9), > 0 (default 0.5). */
+  void setAlpha2(double alpha2);
+  double getAlpha2() const { return similarity_.alpha2; }
+
+  /** \brief Normalized-cut stopping threshold (Sec. 5.2): a part is bisected while its best
+   * NCut is at most this value; >= 0 (default 0.1). Ignored when a number of segments is set. */
+  void setThreshold(double threshold);
+  double getThreshold() const { return cut_.threshold; }
+
+  /** \brief Ask for this many segments (> 0); 0 (default) uses the threshold instead. The
+   * hierarchy is refined by splitting the part with the lowest NCut first. Fewer segments
+   * come out when no more parts can be split. */
+  void setNumberOfSegments(int segments);
+  int getNumberOfSegments() const { return cut_.num_segments; }
+
+  /** \brief Number of uniform split values tried on the eigenvector (Sec. 5.2), >= 1
+   * (default 100). */
+  void setNumberOfSplitValues(int values);
+  int getNumberOfSplitValues() const { return cut_.num_splits; }
+
+  /** \brief Scale the feature width by sqrt(total feature area) so that eq. (7) is unit-free
+   * (default true; false follows the paper literally). */
+  void setNormalizeWidth(bool normalize);
+  bool getNormalizeWidth() const { return similarity_.normalize_width; }
+
+  /** \brief Join supernode trees that touch in the kNN graph but meet at no saddle with the
+   * weight of eq. (9) (default true; false follows the paper literally). */
+  void setConnectAdjacentTrees(bool connect);
+  bool getConnectAdjacentTrees() const { return similarity_.connect_adjacent_trees; }
+
+  /** \brief Threads for the centrality phase; 0 (default) uses all cores. Output does not
+   * depend on it. */
+  void setNumberOfThreads(unsigned threads);
+  unsigned getNumberOfThreads() const { return num_threads_; }
+
+  /** \brief Segment the input. Segments are ordered by their smallest point index; every
+   * finite input point (within the indices) is in exactly one. On bad input, prints a
+   * PCL_ERROR and returns no segments. */
+  void extract(std::vector<pcl::PointIndices>& segments);
+
+  /** \brief The input cloud coloured by segment (distinct colours, the same on every run);
+   * points in no segment are black. Empty before a successful extract(). */
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr getColoredCloud() const;
+
+  /** \brief The input cloud labelled by segment, 1-based; 0 for points in no segment. */
+  pcl::PointCloud<pcl::PointXYZL>::Ptr getLabeledCloud() const;
+
+  /** \brief The colour of segment i (0-based) used by getColoredCloud(). */
+  static void segmentColor(std::size_t i, std::uint8_t& r, std::uint8_t& g, std::uint8_t& b);
+
+  /// \name Intermediate results (valid after a successful extract())
+  /// Per-point arrays have one entry per input cloud point; NaN or kNone where not used.
+  /// \{
+  /** \brief Centrality f(p) of eq. (1) per input point (NaN for points not segmented). */
+  std::vector<float> getCentrality() const;
+  /** \brief Input indices of the points where supernodes were born (local maxima of f). */
+  std::vector<int> getLocalMaxima() const;
+  /** \brief Input indices of the saddle points (Sec. 4.2 (d)). */
+  std::vector<int> getSaddles() const;
+  /** \brief Supernode per input point before (refined = false) or after local refinement;
+   * -1 for points not segmented. */
+  std::vector<int> getSupernodeLabels(bool refined) const;
+  /** \brief Number of supernodes before (m) or after (l) refinement. */
+  std::size_t getNumberOfSupernodes(bool refined) const;
+  /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2). */
+  const pcl_ncut_seg::Hierarchy& getHierarchy() const { return result_.hierarchy; }
+  /** \brief The supernode graph G_s (Sec. 5.1). */
+  const pcl_ncut_seg::WeightedGraph& getSupernodeGraph() const { return result_.graph; }
+  /** \brief Wall time of each phase of the last extract() (Table 1's columns). */
+  const pcl_ncut_seg::PhaseTimes& getPhaseTimes() const { return times_; }
+  /** \brief The whole expensive stage, or nullptr. */
+  const pcl_ncut_seg::Analysis* getAnalysis() const { return analysis_.get(); }
+  /** \brief Input index of each analysed point (the graph's vertex order). */
+  const std::vector<int>& getAnalysedIndices() const { return point_index_; }
+  /// \}
+
+protected:
+  /** \brief Build the kNN graph and run the expensive stage; false on bad input. */
+  bool analyze();
+  void invalidate();
+
+  KdTreePtr search_;
+  int k_ = 10;
+  int num_samples_ = 0;
+  float crossing_fraction_ = 0.3f;
+  float area_fraction_ = 0.01f;
+  float height_fraction_ = 0.01f;
+  unsigned num_threads_ = 0;
+  pcl_ncut_seg::SimilarityParams similarity_;
+  pcl_ncut_seg::CutParams cut_;
+
+  std::shared_ptr<pcl_ncut_seg::Analysis> analysis_; ///< expensive stage, or null
+  std::vector<int> point_index_;      ///< graph vertex -> input index
+  pcl_ncut_seg::CutResult result_;
+  pcl_ncut_seg::PhaseTimes times_;
+  bool have_result_ = false;
+
+public:
+  PCL_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+} // namespace pcl
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_ncut_seg/impl/supernode_ncut_segmentation.hpp>
+#endif

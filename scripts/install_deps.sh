@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the build and test dependencies on Debian 12 (or a close relative) with apt-get.
+# Does nothing when they are all installed already. Needs root, or sudo.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake
+  libpcl-dev libeigen3-dev libflann-dev libboost-graph-dev libspectra-dev
+  libgtest-dev
+  pcl-tools xvfb xauth
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$pkg")
+  fi
+done
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install_deps: all dependencies are installed"
+  exit 0
+fi
+
+if [ "$(id -u)" -eq 0 ]; then
+  SUDO=()
+elif command -v sudo >/dev/null 2>&1; then
+  SUDO=(sudo)
+else
+  echo "install_deps: missing packages: ${missing[*]}" >&2
+  echo "install_deps: run as root, or install sudo, or install them yourself" >&2
+  exit 1
+fi
+
+echo "install_deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
+  apt-get install -y --no-install-recommends "${PACKAGES[@]}"

@@ -1,0 +1,71 @@
+#include <pcl_ncut_seg/core/pipeline.h>
+
+#include <chrono>
+
+namespace pcl_ncut_seg {
+namespace {
+class Stopwatch {
+public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - start_).count();
+    start_ = now;
+    return s;
+  }
+
+private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+} // namespace
+
+Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times) {
+  Analysis a;
+  a.graph = std::move(graph);
+  Stopwatch clock;
+  a.centrality = computeCentrality(a.graph, params.num_samples, params.num_threads);
+  times.centrality = clock.lap();
+  a.raw_supernodes =
+      extractSupernodes(a.graph, a.centrality.f, params.crossing_fraction);
+  times.supernodes = clock.lap();
+  a.radii = pointRadii(a.graph, a.centrality.f);
+  a.supernodes = refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes,
+                                  params.refinement);
+  a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
+  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+  times.refinement = clock.lap();
+  return a;
+}
+
+CutResult cut(const Analysis& analysis, const SimilarityParams& similarity,
+              const CutParams& params, PhaseTimes& times) {
+  CutResult r;
+  Stopwatch clock;
+  const std::size_t l = analysis.supernodes.size();
+  r.graph = buildSupernodeGraph(analysis.supernodes, analysis.stats, analysis.conn, similarity);
+  r.hierarchy = buildHierarchy(r.graph, l, params);
+  times.hierarchy = clock.lap();
+
+  // Each supernode follows its member vertex m_i (footnote 6); each point its supernode.
+  std::vector<std::uint32_t> leaf_of(l, kNone);
+  const std::vector<int> leaves = r.hierarchy.leaves();
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    for (std::uint32_t v : r.hierarchy.nodes[leaves[k]].vertices)
+      if (v >= l)
+        leaf_of[v - l] = static_cast<std::uint32_t>(k);
+  std::vector<std::uint32_t> segment_of_leaf(leaves.size(), kNone);
+  const std::vector<std::uint32_t>& label = analysis.supernodes.label;
+  r.point_segment.resize(label.size());
+  for (std::size_t p = 0; p < label.size(); ++p) {
+    std::uint32_t& seg = segment_of_leaf[leaf_of[label[p]]];
+    if (seg == kNone)
+      seg = static_cast<std::uint32_t>(r.num_segments++);
+    r.point_segment[p] = seg;
+  }
+  r.supernode_segment.resize(l);
+  for (std::size_t s = 0; s < l; ++s)
+    r.supernode_segment[s] = segment_of_leaf[leaf_of[s]];
+  times.points = clock.lap();
+  return r;
+}
+
+} // namespace pcl_ncut_seg

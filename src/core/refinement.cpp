@@ -1,0 +1,358 @@
+// Sec. 4.3: feature height (2), area and radius (3), width (4), and the local refinement that
+// merges insignificant supernodes.
+#include <pcl_ncut_seg/core/refinement.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pcl_ncut_seg {
+
+std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f) {
+  const std::size_t n = graph.numVertices();
+  std::vector<float> r(n, 0.0f);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    const std::uint32_t b = graph.offsets[p], e = graph.offsets[p + 1];
+    if (b == e)
+      continue;
+    double sum = 0.0;
+    for (std::uint32_t i = b; i < e; ++i)
+      sum += featureDistance(f[p] - f[graph.targets[i]], graph.lengths[i]);
+    r[p] = static_cast<float>(sum / (e - b));
+  }
+  return r;
+}
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+float widthOf(double area, double height, double max_height) {
+  const double floor = 1e-6 * max_height > 0 ? 1e-6 * max_height : 1e-30;
+  return static_cast<float>(area / std::max(height, floor));
+}
+
+/// Working copy of the supernodes during refinement, with incrementally merged statistics.
+struct Work {
+  std::vector<std::uint32_t> label;
+  std::vector<bool> alive, at_saddle;
+  std::vector<std::uint32_t> origin, parent;
+  std::vector<std::vector<std::uint32_t>> children, points;
+  std::vector<double> area;
+  std::vector<float> fmin, fmax;
+
+  float height(std::uint32_t s) const { return fmax[s] - fmin[s]; }
+
+  std::uint32_t add(std::uint32_t origin_point, bool saddle, std::uint32_t par) {
+    const auto s = static_cast<std::uint32_t>(alive.size());
+    alive.push_back(true);
+    at_saddle.push_back(saddle);
+    origin.push_back(origin_point);
+    parent.push_back(par);
+    children.emplace_back();
+    points.emplace_back();
+    area.push_back(0.0);
+    fmin.push_back(std::numeric_limits<float>::infinity());
+    fmax.push_back(-std::numeric_limits<float>::infinity());
+    if (par != kNone)
+      children[par].push_back(s);
+    return s;
+  }
+  void addPoint(std::uint32_t s, std::uint32_t p, const std::vector<float>& f, double a) {
+    label[p] = s;
+    points[s].push_back(p);
+    area[s] += a;
+    fmin[s] = std::min(fmin[s], f[p]);
+    fmax[s] = std::max(fmax[s], f[p]);
+  }
+  void replaceChild(std::uint32_t par, std::uint32_t old_child,
+                    const std::vector<std::uint32_t>& with) {
+    if (par == kNone)
+      return;
+    auto& c = children[par];
+    c.erase(std::remove(c.begin(), c.end(), old_child), c.end());
+    for (std::uint32_t w : with) {
+      c.push_back(w);
+      parent[w] = par;
+    }
+    std::sort(c.begin(), c.end());
+  }
+  /// Merge s into t: s's points join t, s's children terminate at t's place in the tree.
+  void mergeInto(std::uint32_t s, std::uint32_t t, const std::vector<float>& f,
+                 const std::vector<double>& point_area) {
+    for (std::uint32_t p : points[s])
+      addPoint(t, p, f, point_area[p]);
+    points[s].clear();
+    if (parent[s] == t) {
+      replaceChild(t, s, children[s]);
+    } else {
+      replaceChild(parent[s], s, {});
+      for (std::uint32_t c : children[s])
+        if (c != t)
+          replaceChild(t, kNone, {c});
+      auto& tc = children[t];
+      tc.erase(std::remove(tc.begin(), tc.end(), s), tc.end());
+    }
+    children[s].clear();
+    parent[s] = kNone;
+    alive[s] = false;
+  }
+  /// The other supernode that shares most kNN edges with these points (ties: smaller id).
+  std::uint32_t bestNeighbour(const CsrGraph& g, const std::vector<std::uint32_t>& pts,
+                              std::uint32_t self) const {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> count;
+    for (std::uint32_t p : pts)
+      for (std::uint32_t e = g.offsets[p]; e < g.offsets[p + 1]; ++e) {
+        const std::uint32_t t = label[g.targets[e]];
+        if (t == self)
+          continue;
+        auto it = std::find_if(count.begin(), count.end(),
+                               [t](const auto& c) { return c.first == t; });
+        if (it == count.end())
+          count.emplace_back(t, 1);
+        else
+          ++it->second;
+      }
+    std::uint32_t best = kNone, best_count = 0;
+    for (const auto& c : count)
+      if (c.second > best_count || (c.second == best_count && c.first < best)) {
+        best = c.first;
+        best_count = c.second;
+      }
+    return best;
+  }
+};
+} // namespace
+
+FeatureStats featureStats(const Supernodes& sn, const std::vector<float>& f,
+                          const std::vector<float>& radii) {
+  const std::size_t m = sn.size();
+  std::vector<double> area(m, 0.0);
+  std::vector<float> fmin(m, std::numeric_limits<float>::infinity()),
+      fmax(m, -std::numeric_limits<float>::infinity());
+  for (std::size_t p = 0; p < sn.label.size(); ++p) {
+    const std::uint32_t s = sn.label[p];
+    area[s] += kPi * radii[p] * radii[p];
+    fmin[s] = std::min(fmin[s], f[p]);
+    fmax[s] = std::max(fmax[s], f[p]);
+  }
+  FeatureStats st;
+  st.height.resize(m);
+  st.area.resize(m);
+  st.width.resize(m);
+  float max_height = 0.0f;
+  for (std::size_t s = 0; s < m; ++s) {
+    st.height[s] = fmax[s] >= fmin[s] ? fmax[s] - fmin[s] : 0.0f;
+    max_height = std::max(max_height, st.height[s]);
+  }
+  for (std::size_t s = 0; s < m; ++s) {
+    st.area[s] = static_cast<float>(area[s]);
+    st.width[s] = widthOf(area[s], st.height[s], max_height);
+  }
+  return st;
+}
+
+Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
+                            const std::vector<float>& radii, const Supernodes& input,
+                            const RefinementParams& params) {
+  const std::size_t n = graph.numVertices();
+  const std::size_t m = input.size();
+  std::vector<double> point_area(n);
+  for (std::size_t p = 0; p < n; ++p)
+    point_area[p] = kPi * radii[p] * radii[p];
+
+  Work w;
+  w.label.assign(n, kNone);
+  for (std::size_t s = 0; s < m; ++s)
+    w.add(input.origin[s], input.at_saddle[s], kNone);
+  for (std::size_t s = 0; s < m; ++s) {
+    w.parent[s] = input.parent[s];
+    w.children[s] = input.children[s];
+  }
+  for (std::uint32_t p = 0; p < n; ++p)
+    w.addPoint(input.label[p], p, f, point_area[p]);
+
+  // Thresholds from the supernodes before refinement (footnotes 4 and 5).
+  double total_area = 0.0;
+  float max_height = 0.0f;
+  for (std::size_t s = 0; s < m; ++s) {
+    total_area += w.area[s];
+    max_height = std::max(max_height, w.height(s));
+  }
+  const double small_area = params.area_fraction * total_area;
+  const float skinny_height = params.height_fraction * max_height;
+  auto small = [&](std::uint32_t s) { return w.area[s] < small_area; };
+  auto skinny = [&](std::uint32_t s) { return w.height(s) < skinny_height; };
+
+  // 1. Merge-up: a small supernode created at a saddle goes back to the supernodes that
+  //    terminate there. Its points join them by growing from them, highest f first.
+  std::vector<std::uint32_t> by_f;
+  for (std::uint32_t s = 0; s < m; ++s) {
+    if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
+      continue;
+    const std::vector<std::uint32_t> kids = w.children[s];
+    by_f = w.points[s];
+    std::sort(by_f.begin(), by_f.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return f[a] > f[b] || (f[a] == f[b] && a < b);
+    });
+    std::vector<std::uint32_t> pending = by_f;
+    w.points[s].clear();
+    w.area[s] = 0.0;
+    for (bool changed = true; changed && !pending.empty();) {
+      changed = false;
+      std::vector<std::uint32_t> rest;
+      for (std::uint32_t p : pending) {
+        std::uint32_t best = kNone, best_count = 0;
+        for (std::uint32_t kid : kids) {
+          std::uint32_t c = 0;
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+            c += w.label[graph.targets[e]] == kid;
+          if (c > best_count) {
+            best = kid;
+            best_count = c;
+          }
+        }
+        if (best == kNone) {
+          rest.push_back(p);
+        } else {
+          w.addPoint(best, p, f, point_area[p]);
+          changed = true;
+        }
+      }
+      pending.swap(rest);
+    }
+    // Points that never touch a child: the largest child takes them; step 3 re-tests them.
+    std::uint32_t largest = kids.front();
+    for (std::uint32_t kid : kids)
+      if (w.area[kid] > w.area[largest])
+        largest = kid;
+    for (std::uint32_t p : pending)
+      w.addPoint(largest, p, f, point_area[p]);
+    w.replaceChild(w.parent[s], s, kids);
+    if (w.parent[s] == kNone)
+      for (std::uint32_t kid : kids)
+        w.parent[kid] = kNone;
+    w.children[s].clear();
+    w.parent[s] = kNone;
+    w.alive[s] = false;
+  }
+
+  // 2. Merge-down: a skinny supernode, or a small one not merged up, that terminates at a
+  //    saddle joins the supernode created there.
+  for (std::uint32_t s = 0; s < m; ++s)
+    if (w.alive[s] && w.parent[s] != kNone && (skinny(s) || small(s)))
+      w.mergeInto(s, w.parent[s], f, point_area);
+
+  // 3. Disconnected regions: all but the largest are re-tested.
+  std::vector<std::uint32_t> region(n, kNone);
+  const std::size_t before_regions = w.alive.size();
+  for (std::uint32_t s = 0; s < before_regions; ++s) {
+    if (!w.alive[s] || w.points[s].empty())
+      continue;
+    std::vector<std::vector<std::uint32_t>> regions;
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t seed : w.points[s]) {
+      if (region[seed] != kNone)
+        continue;
+      const auto r = static_cast<std::uint32_t>(regions.size());
+      regions.emplace_back();
+      region[seed] = r;
+      stack.push_back(seed);
+      while (!stack.empty()) {
+        const std::uint32_t p = stack.back();
+        stack.pop_back();
+        regions[r].push_back(p);
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (w.label[q] == s && region[q] == kNone) {
+            region[q] = r;
+            stack.push_back(q);
+          }
+        }
+      }
+    }
+    for (std::uint32_t p : w.points[s])
+      region[p] = kNone;
+    if (regions.size() < 2)
+      continue;
+    std::size_t keep = 0;
+    for (std::size_t r = 1; r < regions.size(); ++r)
+      if (regions[r].size() > regions[keep].size())
+        keep = r;
+    // Rebuild s from the kept region, then place the others.
+    w.points[s].clear();
+    w.area[s] = 0.0;
+    w.fmin[s] = std::numeric_limits<float>::infinity();
+    w.fmax[s] = -std::numeric_limits<float>::infinity();
+    for (std::uint32_t p : regions[keep])
+      w.addPoint(s, p, f, point_area[p]);
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      if (r == keep)
+        continue;
+      double area = 0.0;
+      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+      for (std::uint32_t p : regions[r]) {
+        area += point_area[p];
+        lo = std::min(lo, f[p]);
+        hi = std::max(hi, f[p]);
+      }
+      std::sort(regions[r].begin(), regions[r].end());
+      const std::uint32_t t = (area < small_area || hi - lo < skinny_height)
+                                  ? w.bestNeighbour(graph, regions[r], s)
+                                  : kNone;
+      if (t != kNone) {
+        for (std::uint32_t p : regions[r])
+          w.addPoint(t, p, f, point_area[p]);
+      } else {
+        const std::uint32_t fresh = w.add(regions[r].front(), false, w.parent[s]);
+        for (std::uint32_t p : regions[r])
+          w.addPoint(fresh, p, f, point_area[p]);
+      }
+    }
+  }
+
+  // 4. A small or skinny supernode with no saddle relation joins its point-wise neighbour.
+  std::vector<std::uint32_t> lone;
+  for (std::uint32_t s = 0; s < w.alive.size(); ++s)
+    if (w.alive[s] && !w.points[s].empty() && w.parent[s] == kNone && w.children[s].empty() &&
+        (small(s) || skinny(s)))
+      lone.push_back(s);
+  std::sort(lone.begin(), lone.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return w.area[a] < w.area[b] || (w.area[a] == w.area[b] && a < b);
+  });
+  for (std::uint32_t s : lone) {
+    if (!w.alive[s] || !(small(s) || skinny(s)))
+      continue;
+    const std::uint32_t t = w.bestNeighbour(graph, w.points[s], s);
+    if (t != kNone)
+      w.mergeInto(s, t, f, point_area);
+  }
+
+  // Compact ids, numbered by each supernode's smallest point.
+  std::vector<std::uint32_t> new_id(w.alive.size(), kNone);
+  Supernodes out;
+  out.label.assign(n, kNone);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    const std::uint32_t s = w.label[p];
+    if (new_id[s] == kNone) {
+      new_id[s] = static_cast<std::uint32_t>(out.origin.size());
+      out.origin.push_back(w.origin[s]);
+      out.at_saddle.push_back(w.at_saddle[s]);
+    }
+    out.label[p] = new_id[s];
+  }
+  const std::size_t l = out.origin.size();
+  out.parent.assign(l, kNone);
+  out.children.assign(l, {});
+  for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
+    if (new_id[s] == kNone)
+      continue;
+    if (w.parent[s] != kNone && new_id[w.parent[s]] != kNone)
+      out.parent[new_id[s]] = new_id[w.parent[s]];
+  }
+  for (std::uint32_t s = 0; s < l; ++s)
+    if (out.parent[s] != kNone)
+      out.children[out.parent[s]].push_back(s);
+  return out;
+}
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,138 @@
+// Sec. 5.1: the graph of representative and member vertices, weights (7) and (9), conn (8).
+#include <pcl_ncut_seg/core/supernode_graph.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pcl_ncut_seg {
+
+Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<float>& f,
+                                   const std::vector<std::uint32_t>& label) {
+  const std::size_t n = graph.numVertices();
+  std::uint32_t l = 0;
+  for (std::uint32_t s : label)
+    l = std::max(l, s + 1);
+  // Group points by supernode, then sum each supernode's edges in a scratch row: O(|E|).
+  std::vector<std::uint32_t> start(l + 1, 0), members(n);
+  for (std::uint32_t s : label)
+    ++start[s + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::uint32_t p = 0; p < n; ++p)
+    members[fill[label[p]]++] = p;
+
+  Connectivity conn;
+  std::vector<double> row(l, 0.0);
+  std::vector<std::uint32_t> touched;
+  for (std::uint32_t i = 0; i < l; ++i) {
+    touched.clear();
+    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+      const std::uint32_t p = members[k];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        const std::uint32_t j = label[q];
+        if (j < i)
+          continue; // counted from j's side: conn is symmetric on a symmetric graph
+        if (row[j] == 0.0)
+          touched.push_back(j);
+        // eq. (8) with the norm of eq. (3); +tiny keeps zero-length edges recorded
+        row[j] += featureDistance(f[p] - f[q], graph.lengths[e]) + 1e-300;
+      }
+    }
+    std::sort(touched.begin(), touched.end());
+    for (std::uint32_t j : touched) {
+      conn[{i, j}] = row[j];
+      row[j] = 0.0;
+    }
+  }
+  return conn;
+}
+
+namespace {
+double lookup(const Connectivity& conn, std::uint32_t i, std::uint32_t j) {
+  auto it = conn.find({std::min(i, j), std::max(i, j)});
+  return it == conn.end() ? 0.0 : it->second;
+}
+constexpr double kMinWeight = 1e-200; // keeps every vertex's degree positive (D regular)
+} // namespace
+
+WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stats,
+                                  const Connectivity& conn, const SimilarityParams& params) {
+  const auto l = static_cast<std::uint32_t>(sn.size());
+  WeightedGraph g;
+  g.num_vertices = 2 * l;
+  if (l == 0)
+    return g;
+
+  double max_self = 0.0, max_pair = 0.0;
+  for (const auto& [key, value] : conn) {
+    double& max = key.first == key.second ? max_self : max_pair;
+    max = std::max(max, value);
+  }
+  double total_area = 0.0;
+  float min_h = stats.height[0], max_h = stats.height[0];
+  for (std::uint32_t s = 0; s < l; ++s) {
+    total_area += stats.area[s];
+    min_h = std::min(min_h, stats.height[s]);
+    max_h = std::max(max_h, stats.height[s]);
+  }
+  // Feature width is an area over a height, i.e. a length: measure it in units of
+  // sqrt(total area) so the weights do not depend on the model's units.
+  const double width_unit =
+      params.normalize_width && total_area > 0.0 ? std::sqrt(total_area) : 1.0;
+  std::vector<double> width(l);
+  for (std::uint32_t s = 0; s < l; ++s)
+    width[s] = std::max(static_cast<double>(stats.width[s]) / width_unit, 1e-300);
+
+  // eq. (7): r_i - m_i
+  for (std::uint32_t i = 0; i < l; ++i) {
+    const double ratio = max_self > 0.0 ? lookup(conn, i, i) / max_self : 0.0;
+    const double w = std::exp(-(1.0 - ratio) / (params.beta * width[i]));
+    g.edges.push_back({i, l + i, std::max(w, kMinWeight)});
+  }
+  // eq. (9): m_i - m_j
+  const double max_dh = static_cast<double>(max_h) - min_h;
+  auto similarity = [&](std::uint32_t i, std::uint32_t j) {
+    const double d1 = max_dh > 0.0 ? std::abs(stats.height[i] - stats.height[j]) / max_dh : 0.0;
+    const double d2 = max_pair > 0.0 ? 1.0 - lookup(conn, i, j) / max_pair : 1.0;
+    const double alpha_ij = std::max(
+        params.alpha2 * std::min(width[i], width[j]) / std::max(width[i], width[j]), 1e-300);
+    return std::max(std::exp(-d1 / params.alpha1 - d2 / alpha_ij), kMinWeight);
+  };
+  std::vector<std::uint32_t> tree(l);
+  std::iota(tree.begin(), tree.end(), 0u);
+  auto find = [&](std::uint32_t s) {
+    while (tree[s] != s)
+      s = tree[s] = tree[tree[s]];
+    return s;
+  };
+  for (std::uint32_t i = 0; i < l; ++i) {
+    const std::uint32_t p = sn.parent[i];
+    if (p == kNone)
+      continue;
+    g.edges.push_back({l + std::min(i, p), l + std::max(i, p), similarity(i, p)});
+    tree[find(i)] = find(p);
+  }
+  if (params.connect_adjacent_trees) {
+    // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
+    // apart) would be cut at zero cost: join them where they are most connected point-wise.
+    std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;
+    for (const auto& [key, value] : conn)
+      if (key.first != key.second)
+        candidates.push_back({value, key});
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    });
+    for (const auto& [value, key] : candidates) {
+      const std::uint32_t a = find(key.first), b = find(key.second);
+      if (a == b)
+        continue;
+      tree[a] = b;
+      g.edges.push_back({l + key.first, l + key.second, similarity(key.first, key.second)});
+    }
+  }
+  return g;
+}
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,118 @@
+// Sec. 4.2: supernodes from the discrete gradient flow, created anew at saddle points, with
+// feature-crossing edges removed by the fraction rule (b).
+#include <pcl_ncut_seg/core/supernodes.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace pcl_ncut_seg {
+
+std::vector<std::uint32_t> Supernodes::localMaxima() const {
+  std::vector<std::uint32_t> out;
+  for (std::size_t s = 0; s < size(); ++s)
+    if (!at_saddle[s])
+      out.push_back(origin[s]);
+  return out;
+}
+
+std::vector<std::uint32_t> Supernodes::saddles() const {
+  std::vector<std::uint32_t> out;
+  for (std::size_t s = 0; s < size(); ++s)
+    if (at_saddle[s])
+      out.push_back(origin[s]);
+  return out;
+}
+
+Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
+                             float crossing_fraction) {
+  const std::size_t n = graph.numVertices();
+  Supernodes sn;
+  sn.label.assign(n, kNone);
+  // Descending f, ties by index: a deterministic order for equal values.
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return f[a] > f[b] || (f[a] == f[b] && a < b);
+  });
+  std::vector<std::uint32_t> rank(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    rank[order[i]] = i;
+
+  // A merged supernode redirects to the one created at its saddle (step (d)).
+  std::vector<std::uint32_t> redirect;
+  auto find = [&](std::uint32_t s) {
+    std::uint32_t r = s;
+    while (redirect[r] != r)
+      r = redirect[r];
+    while (redirect[s] != r) {
+      const std::uint32_t next = redirect[s];
+      redirect[s] = r;
+      s = next;
+    }
+    return r;
+  };
+  auto create = [&](std::uint32_t point, bool at_saddle) {
+    const auto s = static_cast<std::uint32_t>(sn.origin.size());
+    sn.origin.push_back(point);
+    sn.at_saddle.push_back(at_saddle);
+    sn.parent.push_back(kNone);
+    sn.children.emplace_back();
+    redirect.push_back(s);
+    return s;
+  };
+
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> counts; // (supernode, points in M(p))
+  std::vector<std::uint32_t> kept;
+  for (std::uint32_t p : order) {
+    counts.clear();
+    const std::uint32_t begin = graph.offsets[p], end = graph.offsets[p + 1];
+    std::uint32_t steepest = kNone; // the supernode of argmax_{q in M(p)} z(p, q)
+    float best_z = -std::numeric_limits<float>::infinity();
+    for (std::uint32_t e = begin; e < end; ++e) {
+      const std::uint32_t q = graph.targets[e];
+      if (rank[q] > rank[p])
+        continue; // not processed: not in M(p)
+      const std::uint32_t s = find(sn.label[q]);
+      auto it = std::find_if(counts.begin(), counts.end(),
+                             [s](const auto& c) { return c.first == s; });
+      if (it == counts.end())
+        counts.emplace_back(s, 1);
+      else
+        ++it->second;
+      // z(p, q) = (f(q) - f(p)) / d(p, q); a duplicate point (d = 0) is the steepest.
+      const float d = graph.lengths[e];
+      const float z = d > 0.0f ? (f[q] - f[p]) / d : std::numeric_limits<float>::infinity();
+      if (z > best_z) {
+        best_z = z;
+        steepest = s;
+      }
+    }
+    if (counts.empty()) { // step 1: p is a local maximum
+      sn.label[p] = create(p, false);
+      continue;
+    }
+    // Step (b): drop supernodes holding only a small fraction of N(p).
+    const float min_count = crossing_fraction * static_cast<float>(end - begin);
+    kept.clear();
+    for (const auto& c : counts)
+      if (static_cast<float>(c.second) >= min_count)
+        kept.push_back(c.first);
+    if (kept.empty()) {
+      sn.label[p] = steepest; // no rule in the text: follow the gradient
+    } else if (kept.size() == 1) {
+      sn.label[p] = kept.front(); // step (c)
+    } else { // step (d): p is a saddle
+      std::sort(kept.begin(), kept.end());
+      const std::uint32_t s = create(p, true);
+      for (std::uint32_t t : kept) {
+        sn.parent[t] = s;
+        sn.children[s].push_back(t);
+        redirect[t] = s;
+      }
+      sn.label[p] = s;
+    }
+  }
+  return sn;
+}
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,347 @@
+/*
+ * End-to-end tests of pcl::SupernodeNCutSegmentation on generated shapes with known parts:
+ * the Rand index against the truth, invariance to rigid motion, density and non-uniform
+ * sampling, and separate objects. The metric and shape helpers are tested first.
+ */
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/metrics.h"
+#include "support/shapes.h"
+
+#include <pcl/search/kdtree.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+using pcl_ncut_seg::test::LabeledShape;
+using pcl_ncut_seg::test::randIndex;
+using pcl_ncut_seg::test::SamplingOptions;
+using pcl_ncut_seg::test::segmentsToLabels;
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+
+// ---------------------------------------------------------------------------------------------
+// The metric
+
+/** \brief The Rand index from its definition, over all pairs (reference for the fast one). */
+double bruteForceRandIndex(const std::vector<int>& a, const std::vector<int>& b) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] >= 0 && b[i] >= 0)
+      kept.push_back(i);
+  if (kept.size() < 2)
+    return 1.0;
+  std::size_t agree = 0, total = 0;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    for (std::size_t j = i + 1; j < kept.size(); ++j) {
+      const std::size_t p = kept[i], q = kept[j];
+      agree += (a[p] == a[q]) == (b[p] == b[q]);
+      ++total;
+    }
+  return double(agree) / double(total);
+}
+
+TEST(RandIndex, HandComputedExample) {
+  // Pairs (0,1) and (0,3), (1,3) agree; (0,2), (1,2), (2,3) do not: 3 of 6.
+  EXPECT_DOUBLE_EQ(randIndex({0, 0, 1, 1}, {0, 0, 0, 1}), 0.5);
+  EXPECT_DOUBLE_EQ(randIndex({0, 0, 1, 1}, {0, 1, 0, 1}), 2.0 / 6.0);
+}
+
+TEST(RandIndex, IsOneForTheSamePartitionUnderAnyNames) {
+  const std::vector<int> a = {3, 3, 7, 7, 7, 1, 1000000, 3};
+  const std::vector<int> b = {0, 0, 5, 5, 5, 9, 2, 0};
+  EXPECT_DOUBLE_EQ(randIndex(a, a), 1.0);
+  EXPECT_DOUBLE_EQ(randIndex(a, b), 1.0);
+  EXPECT_LT(randIndex(a, {0, 0, 5, 5, 5, 9, 9, 0}), 1.0);
+}
+
+TEST(RandIndex, MatchesTheDefinitionOnRandomLabelings) {
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 50; ++trial) {
+    const std::size_t n = 1 + rng() % 200;
+    const int range_a = 1 + int(rng() % 6), range_b = 1 + int(rng() % 9);
+    std::vector<int> a(n), b(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      // Arbitrary ints, some negative (skipped), some large.
+      a[i] = int(rng() % (range_a + 1)) - 1;
+      b[i] = int(rng() % range_b) * 1000003 - (rng() % 10 == 0 ? 2000000000 : 0);
+    }
+    EXPECT_NEAR(randIndex(a, b), bruteForceRandIndex(a, b), 1e-12) << "trial " << trial;
+    EXPECT_NEAR(randIndex(a, b), randIndex(b, a), 1e-12);
+  }
+}
+
+TEST(RandIndex, SkipsNegativeLabelsAndDegenerateInput) {
+  // Without the skipped point 2 the labelings are the same partition.
+  EXPECT_DOUBLE_EQ(randIndex({0, 0, -1, 1}, {4, 4, 4, 5}), 1.0);
+  EXPECT_DOUBLE_EQ(randIndex({0, 0, 1, 1}, {4, 4, -3, 5}), 1.0);
+  EXPECT_DOUBLE_EQ(randIndex({}, {}), 1.0);
+  EXPECT_DOUBLE_EQ(randIndex({1}, {2}), 1.0);
+  EXPECT_THROW(randIndex({0, 1}, {0}), std::invalid_argument);
+}
+
+TEST(SegmentsToLabels, LabelsBySegmentAndLeavesOthersUnassigned) {
+  std::vector<pcl::PointIndices> segments(2);
+  segments[0].indices = {4, 0};
+  segments[1].indices = {2};
+  EXPECT_EQ(segmentsToLabels(segments, 5), (std::vector<int>{0, -1, 1, -1, 0}));
+  segments[1].indices.push_back(5);
+  EXPECT_THROW(segmentsToLabels(segments, 5), std::out_of_range);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The shapes
+
+TEST(Shapes, AreDeterministicForASeed) {
+  const LabeledShape a = pcl_ncut_seg::test::makeHand(500, 3);
+  const LabeledShape b = pcl_ncut_seg::test::makeHand(500, 3);
+  const LabeledShape c = pcl_ncut_seg::test::makeHand(500, 4);
+  ASSERT_EQ(a.cloud->size(), 500u);
+  ASSERT_EQ(a.labels.size(), 500u);
+  bool same = a.labels == b.labels, differs = false;
+  for (std::size_t i = 0; i < 500; ++i) {
+    same = same && (*a.cloud)[i].getVector3fMap() == (*b.cloud)[i].getVector3fMap();
+    differs = differs || (*a.cloud)[i].getVector3fMap() != (*c.cloud)[i].getVector3fMap();
+  }
+  EXPECT_TRUE(same);
+  EXPECT_TRUE(differs);
+}
+
+/** \brief Pairs of parts joined by an edge of the symmetric k-nearest-neighbour graph. */
+std::set<std::pair<int, int>> touchingParts(const LabeledShape& shape, int k) {
+  pcl::search::KdTree<pcl::PointXYZ> tree;
+  tree.setInputCloud(shape.cloud);
+  std::set<std::pair<int, int>> touching;
+  std::vector<int> index;
+  std::vector<float> sq_dist;
+  for (std::size_t i = 0; i < shape.cloud->size(); ++i) {
+    tree.nearestKSearch((*shape.cloud)[i], k + 1, index, sq_dist);
+    for (int j : index) {
+      const int a = shape.labels[i], b = shape.labels[j];
+      if (a != b)
+        touching.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  return touching;
+}
+
+TEST(Shapes, LimbsTouchOnlyTheBodyInTheKnnGraph) {
+  // Fingers, legs and the tail must not be bridged by k = 10 edges even at the lowest test
+  // density, or no method could separate them; each must still touch the body (label 0).
+  const std::set<std::pair<int, int>> star_hand = {{0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}};
+  EXPECT_EQ(touchingParts(pcl_ncut_seg::test::makeHand(4000, 1), 10), star_hand);
+  EXPECT_EQ(touchingParts(pcl_ncut_seg::test::makeHand(4000, 1, SamplingOptions{4.0}), 10),
+            star_hand);
+  const std::set<std::pair<int, int>> star_animal = {{0, 1}, {0, 2}, {0, 3},
+                                                     {0, 4}, {0, 5}, {0, 6}};
+  EXPECT_EQ(touchingParts(pcl_ncut_seg::test::makeQuadruped(4000, 1), 10), star_animal);
+  EXPECT_EQ(touchingParts(pcl_ncut_seg::test::makeDumbbell(4000, 1), 10),
+            (std::set<std::pair<int, int>>{{0, 1}, {1, 2}}));
+  EXPECT_TRUE(touchingParts(pcl_ncut_seg::test::makeTwoObjects(4000, 1), 10).empty());
+}
+
+TEST(Shapes, DensityRatioSkewsTheDensityAlongX) {
+  // The dumbbell's balls are mirror images: their outer halves get points in the ratio of the
+  // density ramp there, about (1 + 3 * 0.95) / (1 + 3 * 0.05) = 3.3 for a ratio of 4.
+  auto outer_counts = [](const LabeledShape& s) {
+    std::pair<int, int> counts{0, 0};
+    for (const auto& p : *s.cloud) {
+      counts.first += p.x < -1.2f;
+      counts.second += p.x > 1.2f;
+    }
+    return counts;
+  };
+  const auto uniform = outer_counts(pcl_ncut_seg::test::makeDumbbell(8000, 1));
+  const auto skewed = outer_counts(pcl_ncut_seg::test::makeDumbbell(8000, 1, {4.0}));
+  EXPECT_NEAR(double(uniform.second) / uniform.first, 1.0, 0.1);
+  EXPECT_NEAR(double(skewed.second) / skewed.first, 3.3, 0.4);
+}
+
+TEST(Shapes, RigidMotionKeepsDistances) {
+  const LabeledShape s = pcl_ncut_seg::test::makeQuadruped(300, 2);
+  const Cloud::Ptr moved = pcl_ncut_seg::test::applyRigidMotion(*s.cloud, 5);
+  ASSERT_EQ(moved->size(), s.cloud->size());
+  double max_error = 0, max_shift = 0;
+  for (std::size_t i = 0; i + 1 < s.cloud->size(); ++i) {
+    const float before =
+        ((*s.cloud)[i].getVector3fMap() - (*s.cloud)[i + 1].getVector3fMap()).norm();
+    const float after = ((*moved)[i].getVector3fMap() - (*moved)[i + 1].getVector3fMap()).norm();
+    max_error = std::max(max_error, double(std::abs(before - after)));
+    max_shift = std::max(
+        max_shift, double(((*s.cloud)[i].getVector3fMap() - (*moved)[i].getVector3fMap()).norm()));
+  }
+  EXPECT_LT(max_error, 1e-5);
+  EXPECT_GT(max_shift, 0.5); // it did move
+}
+
+// ---------------------------------------------------------------------------------------------
+// Segmenting the shapes
+
+struct Run {
+  std::vector<pcl::PointIndices> segments;
+  std::vector<int> labels; ///< segment per point, -1 for none
+};
+
+/** \brief Every finite point in exactly one segment, non-finite points in none, and no empty
+ * segment. */
+void expectPartition(const Cloud& cloud, const std::vector<pcl::PointIndices>& segments) {
+  std::vector<int> count(cloud.size(), 0);
+  for (const auto& segment : segments) {
+    EXPECT_FALSE(segment.indices.empty()) << "empty segment";
+    for (const auto i : segment.indices) {
+      ASSERT_GE(i, 0);
+      ASSERT_LT(static_cast<std::size_t>(i), cloud.size());
+      ++count[i];
+    }
+  }
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    wrong += count[i] != (pcl::isFinite(cloud[i]) ? 1 : 0);
+  EXPECT_EQ(wrong, 0u) << "points not in exactly one segment (finite) or in one (non-finite)";
+}
+
+/** \brief Segment with the default parameters, except the number of segments if > 0. */
+Run segment(const Cloud::Ptr& cloud, int num_segments) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  if (num_segments > 0)
+    seg.setNumberOfSegments(num_segments);
+  Run run;
+  seg.extract(run.segments);
+  expectPartition(*cloud, run.segments);
+  run.labels = segmentsToLabels(run.segments, cloud->size());
+  return run;
+}
+
+/** \brief Print and record a measured value (the bars below are fixed, the values are not). */
+void report(const std::string& what, double value) {
+  std::cout << "[ measured ] " << what << " = " << value << std::endl;
+  ::testing::Test::RecordProperty(what, std::to_string(value));
+}
+
+class ShapeTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShapeTest, NumberOfSegmentsModeFindsTheParts) {
+  const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 1);
+  const Run run = segment(shape.cloud, shape.num_parts);
+  report("segments", run.segments.size());
+  const double ri = randIndex(run.labels, shape.labels);
+  report("rand_index", ri);
+  EXPECT_EQ(run.segments.size(), static_cast<std::size_t>(shape.num_parts));
+  EXPECT_GE(ri, 0.90);
+}
+
+TEST_P(ShapeTest, DefaultThresholdFindsTheParts) {
+  const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 1);
+  const Run run = segment(shape.cloud, 0);
+  report("segments", run.segments.size());
+  const double ri = randIndex(run.labels, shape.labels);
+  report("rand_index", ri);
+  // Lower than with the count given: the threshold must also find when to stop.
+  EXPECT_GE(ri, 0.85);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, ShapeTest,
+                         ::testing::Values("hand", "quadruped", "dumbbell", "two_objects"));
+
+class InvarianceTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(InvarianceTest, RigidMotion) {
+  const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 1);
+  const Cloud::Ptr moved = pcl_ncut_seg::test::applyRigidMotion(*shape.cloud, 11);
+  const Run before = segment(shape.cloud, shape.num_parts);
+  const Run after = segment(moved, shape.num_parts);
+  // The same points in the same order: the results must agree with each other.
+  const double ri = randIndex(before.labels, after.labels);
+  report("rand_index_between_runs", ri);
+  EXPECT_EQ(before.segments.size(), after.segments.size());
+  EXPECT_GE(ri, 0.95);
+}
+
+TEST_P(InvarianceTest, Density) {
+  for (const std::size_t n : {4000u, 8000u}) {
+    const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), n, 2);
+    const Run run = segment(shape.cloud, shape.num_parts);
+    const double ri = randIndex(run.labels, shape.labels);
+    report("rand_index_n" + std::to_string(n), ri);
+    EXPECT_GE(ri, 0.90) << "n = " << n;
+  }
+}
+
+TEST_P(InvarianceTest, NonUniformSampling) {
+  SamplingOptions options;
+  options.density_ratio = 4.0;
+  const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 3, options);
+  const Run run = segment(shape.cloud, shape.num_parts);
+  const double ri = randIndex(run.labels, shape.labels);
+  report("rand_index", ri);
+  EXPECT_GE(ri, 0.90);
+}
+
+INSTANTIATE_TEST_SUITE_P(Shapes, InvarianceTest,
+                         ::testing::Values("hand", "quadruped", "dumbbell"));
+
+/** \brief Each segment lies within one object (so each object is a union of segments). */
+void expectNoSegmentSpansBothObjects(const LabeledShape& shape, const Run& run) {
+  for (std::size_t s = 0; s < run.segments.size(); ++s) {
+    std::set<int> objects;
+    for (const auto i : run.segments[s].indices)
+      objects.insert(shape.labels[i]);
+    EXPECT_EQ(objects.size(), 1u) << "segment " << s << " spans both objects";
+  }
+}
+
+TEST(TwoObjects, EachObjectIsOneSegmentWhenTwoAreAskedFor) {
+  const LabeledShape shape = pcl_ncut_seg::test::makeTwoObjects(4000, 1);
+  const Run run = segment(shape.cloud, 2);
+  ASSERT_EQ(run.segments.size(), 2u);
+  expectNoSegmentSpansBothObjects(shape, run);
+  EXPECT_DOUBLE_EQ(randIndex(run.labels, shape.labels), 1.0);
+}
+
+TEST(TwoObjects, NoSegmentSpansBothObjectsWithTheThreshold) {
+  for (const std::uint64_t seed : {1u, 2u}) {
+    const LabeledShape shape = pcl_ncut_seg::test::makeTwoObjects(4000, seed);
+    const Run run = segment(shape.cloud, 0);
+    report("segments_seed" + std::to_string(seed), run.segments.size());
+    EXPECT_GE(run.segments.size(), 2u);
+    expectNoSegmentSpansBothObjects(shape, run);
+  }
+}
+
+TEST(TwoObjects, FarApartAfterRigidMotionToo) {
+  const LabeledShape shape = pcl_ncut_seg::test::makeTwoObjects(4000, 1);
+  LabeledShape moved = shape;
+  moved.cloud = pcl_ncut_seg::test::applyRigidMotion(*shape.cloud, 3);
+  const Run run = segment(moved.cloud, 2);
+  ASSERT_EQ(run.segments.size(), 2u);
+  expectNoSegmentSpansBothObjects(moved, run);
+}
+
+TEST(EndToEnd, NonFinitePointsAreInNoSegment) {
+  // Every 37th point replaced by NaN or infinity: those are in no segment and the rest is
+  // still segmented into the parts.
+  LabeledShape shape = pcl_ncut_seg::test::makeHand(4000, 1);
+  const float bad[2] = {std::numeric_limits<float>::quiet_NaN(),
+                        std::numeric_limits<float>::infinity()};
+  for (std::size_t i = 0; i < shape.cloud->size(); i += 37) {
+    (*shape.cloud)[i].y = bad[(i / 37) % 2];
+    shape.labels[i] = -1; // not scored
+  }
+  const Run run = segment(shape.cloud, shape.num_parts);
+  const double ri = randIndex(run.labels, shape.labels);
+  report("rand_index", ri);
+  EXPECT_GE(ri, 0.90);
+}
+
+} // namespace

@@ -1,0 +1,458 @@
+/*
+ * The pcl_ncut_seg command, driven as a user would: run it in a scratch directory, read what it
+ * wrote, and check that every kind of bad input fails with one line on stderr, a non-zero exit
+ * status and no file left behind.
+ */
+#include <gtest/gtest.h>
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/conversions.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kTool = PCL_NCUT_SEG_TOOL;
+const std::string kDataDir = PCL_NCUT_SEG_DATA_DIR;
+
+struct ToolRun {
+  int status = -1; ///< exit status, or -1 if the tool did not exit normally
+  std::string out, err;
+};
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/** The files in a directory, by name. */
+std::set<std::string> listDir(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    names.insert(entry.path().filename().string());
+  return names;
+}
+
+/** Lines of a text without terminal colour codes. */
+std::vector<std::string> lines(const std::string& text) {
+  const std::string plain = std::regex_replace(text, std::regex("\x1b\\[[0-9;]*m"), "");
+  std::vector<std::string> result;
+  std::stringstream ss(plain);
+  std::string line;
+  while (std::getline(ss, line))
+    result.push_back(line);
+  return result;
+}
+
+/** A sphere of radius 1 with three capsules (radius 0.3, length 2.2) sticking out of it along
+ * +x, +y and -x: a palm with three fingers, surface points only. Deterministic. */
+pcl::PointCloud<pcl::PointXYZ>::Ptr makeShape() {
+  struct Capsule {
+    Eigen::Vector3f a, b; // axis from a to b
+    float r;
+  };
+  const float R = 1.0f, r = 0.3f, len = 2.2f;
+  const std::vector<Eigen::Vector3f> dirs = {
+      {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}};
+  std::vector<Capsule> capsules;
+  for (const auto& d : dirs)
+    capsules.push_back({d * 0.5f * R, d * (R + len), r});
+  auto distToSegment = [](const Eigen::Vector3f& p, const Capsule& c) {
+    const Eigen::Vector3f ab = c.b - c.a;
+    const float t = std::clamp((p - c.a).dot(ab) / ab.squaredNorm(), 0.0f, 1.0f);
+    return (p - (c.a + t * ab)).norm();
+  };
+  auto inside = [&](const Eigen::Vector3f& p, int skip_capsule, bool skip_sphere) {
+    if (!skip_sphere && p.norm() < R - 1e-4f)
+      return true;
+    for (int i = 0; i < static_cast<int>(capsules.size()); ++i)
+      if (i != skip_capsule && distToSegment(p, capsules[i]) < capsules[i].r - 1e-4f)
+        return true;
+    return false;
+  };
+
+  std::mt19937 rng(42);
+  std::normal_distribution<float> gauss(0.0f, 1.0f);
+  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+  auto randomDirection = [&]() {
+    Eigen::Vector3f v(gauss(rng), gauss(rng), gauss(rng));
+    return Eigen::Vector3f(v.normalized());
+  };
+
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  auto add = [&](const Eigen::Vector3f& p) { cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z())); };
+  for (int i = 0; i < 1400; ++i) {
+    const Eigen::Vector3f p = R * randomDirection();
+    if (!inside(p, -1, true))
+      add(p);
+  }
+  for (int c = 0; c < static_cast<int>(capsules.size()); ++c) {
+    const Capsule& cap = capsules[c];
+    const Eigen::Vector3f axis = (cap.b - cap.a).normalized();
+    const Eigen::Vector3f u = axis.unitOrthogonal(), v = axis.cross(u);
+    const float height = (cap.b - cap.a).norm();
+    // Cylinder side and the end cap, by area.
+    const float side = 2 * float(M_PI) * cap.r * height, end = 2 * float(M_PI) * cap.r * cap.r;
+    const int n = 500;
+    for (int i = 0; i < n; ++i) {
+      Eigen::Vector3f p;
+      if (uni(rng) < side / (side + end)) {
+        const float phi = 2 * float(M_PI) * uni(rng);
+        p = cap.a + uni(rng) * height * axis + cap.r * (std::cos(phi) * u + std::sin(phi) * v);
+      } else {
+        Eigen::Vector3f d = randomDirection();
+        if (d.dot(axis) < 0)
+          d -= 2 * d.dot(axis) * axis;
+        p = cap.b + cap.r * d;
+      }
+      if (!inside(p, c, false))
+        add(p);
+    }
+  }
+  cloud->width = static_cast<std::uint32_t>(cloud->size());
+  cloud->height = 1;
+  cloud->is_dense = true;
+  return cloud;
+}
+
+/** Two spheres far apart. */
+pcl::PointCloud<pcl::PointXYZ>::Ptr makeTwoSpheres() {
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  const int n = 600;
+  for (int s = 0; s < 2; ++s)
+    for (int i = 0; i < n; ++i) { // Fibonacci sphere
+      const float z = 1.0f - 2.0f * (i + 0.5f) / n, rho = std::sqrt(1.0f - z * z);
+      const float phi = static_cast<float>(i) * 2.39996323f;
+      cloud->push_back(pcl::PointXYZ(rho * std::cos(phi) + 10.0f * s, rho * std::sin(phi), z));
+    }
+  return cloud;
+}
+
+/** What the tool wrote: fields and points. */
+struct Output {
+  std::vector<std::string> fields;
+  pcl::PointCloud<pcl::PointXYZRGBL> cloud;
+};
+
+::testing::AssertionResult readOutput(const fs::path& path, Output& output) {
+  pcl::PCLPointCloud2 blob;
+  if (pcl::io::loadPCDFile(path.string(), blob) < 0)
+    return ::testing::AssertionFailure() << "cannot read " << path;
+  for (const auto& f : blob.fields)
+    output.fields.push_back(f.name);
+  pcl::fromPCLPointCloud2(blob, output.cloud);
+  return ::testing::AssertionSuccess();
+}
+
+/** The number after "t :" in the tool's report, or -1. */
+long printedSegments(const std::string& out) {
+  const std::regex t_line("^t\\s*:\\s*([0-9]+)\\b.*");
+  for (const std::string& line : lines(out)) {
+    std::smatch m;
+    if (std::regex_match(line, m, t_line))
+      return std::stol(m[1]);
+  }
+  return -1;
+}
+
+class ToolTest : public ::testing::Test {
+protected:
+  void SetUp() override {
+    std::string tmpl = (fs::temp_directory_path() / "pcl_ncut_seg_tool_XXXXXX").string();
+    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+    root_ = tmpl;
+    dir_ = root_ / "run";
+    fs::create_directory(dir_);
+    ASSERT_TRUE(fs::exists(kTool)) << kTool;
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ec);
+    for (const auto& entry : fs::recursive_directory_iterator(root_, ec))
+      if (entry.is_directory())
+        fs::permissions(entry.path(), fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(root_, ec);
+  }
+
+  /** Run the tool in dir_ with these (shell-quoted where needed) arguments. */
+  ToolRun run(const std::string& args) const {
+    const fs::path out = root_ / "stdout.txt", err = root_ / "stderr.txt";
+    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kTool) + " " + args +
+                            " >" + quote(out.string()) + " 2>" + quote(err.string());
+    const int status = std::system(cmd.c_str());
+    ToolRun r;
+    r.status = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+    r.out = readText(out);
+    r.err = readText(err);
+    return r;
+  }
+
+  /** The tool failed as it should: non-zero exit, exactly one line on stderr, and the run
+   * directory holds exactly what it held before. */
+  void expectCleanFailure(const std::string& args, const std::string& mention = "") {
+    SCOPED_TRACE("pcl_ncut_seg " + args);
+    const std::set<std::string> before = listDir(dir_);
+    const ToolRun r = run(args);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.status, -1) << "the tool crashed";
+    const std::vector<std::string> err_lines = lines(r.err);
+    ASSERT_EQ(err_lines.size(), 1u) << "stderr:\n" << r.err;
+    EXPECT_FALSE(err_lines[0].empty());
+    if (!mention.empty()) {
+      EXPECT_NE(err_lines[0].find(mention), std::string::npos) << err_lines[0];
+    }
+    EXPECT_EQ(listDir(dir_), before) << "the run left files behind";
+  }
+
+  void writeFile(const std::string& name, const std::string& contents) const {
+    std::ofstream(dir_ / name, std::ios::binary) << contents;
+  }
+
+  fs::path root_, dir_;
+};
+
+TEST_F(ToolTest, HelpListsEveryOptionWithItsDefault) {
+  const ToolRun r = run("-h");
+  EXPECT_EQ(r.status, 0);
+  for (const char* option : {"-k", "-samples", "-crossing", "-area", "-height", "-beta", "-alpha1",
+                             "-alpha2", "-threshold", "-segments", "-splits", "-threads",
+                             "-paper", "-quiet"}) {
+    bool found = false;
+    for (const std::string& line : lines(r.out))
+      if (line.find(std::string(option) + " ") != std::string::npos &&
+          line.find("default") != std::string::npos)
+        found = true;
+    EXPECT_TRUE(found) << option << " missing from the help, or without a default:\n" << r.out;
+  }
+  EXPECT_TRUE(listDir(dir_).empty());
+}
+
+TEST_F(ToolTest, DefaultRunSegmentsTheBundledModel) {
+  if (!fs::exists(fs::path(kDataDir) / "hand.pcd"))
+    GTEST_SKIP() << "no bundled model in " << kDataDir;
+  const ToolRun r = run("");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(listDir(dir_), std::set<std::string>{"hand_segments.pcd"});
+
+  for (const char* phase : {"kNN", "Cen", "Snod", "LRef", "HSeg", "PSeg"}) {
+    const std::regex phase_line(std::string("^") + phase + "\\s*:\\s*[0-9.]+ s$");
+    bool found = false;
+    for (const std::string& line : lines(r.out))
+      found = found || std::regex_match(line, phase_line);
+    EXPECT_TRUE(found) << "no time for " << phase << " in:\n" << r.out;
+  }
+  for (const char* count : {"n", "m", "l"}) {
+    const std::regex count_line(std::string("^") + count + "\\s*:\\s*[0-9]+ .*");
+    bool found = false;
+    for (const std::string& line : lines(r.out))
+      found = found || std::regex_match(line, count_line);
+    EXPECT_TRUE(found) << "no " << count << " in:\n" << r.out;
+  }
+  const long t = printedSegments(r.out);
+  ASSERT_GT(t, 1) << r.out;
+
+  Output output;
+  ASSERT_TRUE(readOutput(dir_ / "hand_segments.pcd", output));
+  for (const char* field : {"x", "y", "z", "rgb", "label"})
+    EXPECT_NE(std::find(output.fields.begin(), output.fields.end(), field), output.fields.end())
+        << "no field " << field;
+
+  pcl::PointCloud<pcl::PointXYZ> input;
+  ASSERT_EQ(pcl::io::loadPCDFile(kDataDir + "/hand.pcd", input), 0);
+  ASSERT_EQ(output.cloud.size(), input.size());
+
+  // Labels 1..t, all used; one colour per label, different labels in different colours.
+  std::map<std::uint32_t, std::uint32_t> colour_of;
+  std::set<std::uint32_t> colours;
+  for (std::size_t i = 0; i < output.cloud.size(); ++i) {
+    const auto& p = output.cloud[i];
+    EXPECT_EQ(p.x, input[i].x);
+    ASSERT_GE(p.label, 1u);
+    ASSERT_LE(p.label, static_cast<std::uint32_t>(t));
+    const std::uint32_t rgb = p.rgba & 0xFFFFFFu;
+    const auto it = colour_of.emplace(p.label, rgb).first;
+    ASSERT_EQ(it->second, rgb) << "label " << p.label << " has two colours";
+  }
+  EXPECT_EQ(static_cast<long>(colour_of.size()), t);
+  for (const auto& lc : colour_of)
+    colours.insert(lc.second);
+  EXPECT_EQ(colours.size(), colour_of.size()) << "two segments share a colour";
+}
+
+TEST_F(ToolTest, SegmentsAGeneratedShapeIntoTheRequestedNumberOfSegments) {
+  auto cloud = makeShape();
+  // One point with no coordinates: kept in the output, in no segment.
+  pcl::PointXYZ nan_point;
+  nan_point.x = nan_point.y = nan_point.z = std::numeric_limits<float>::quiet_NaN();
+  cloud->push_back(nan_point);
+  cloud->is_dense = false;
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *cloud), 0);
+
+  const ToolRun r = run("shape.pcd out.pcd -segments 2 -k 10 -threads 2");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_EQ(printedSegments(r.out), 2) << r.out;
+  EXPECT_EQ(listDir(dir_), (std::set<std::string>{"shape.pcd", "out.pcd"}));
+
+  Output output;
+  ASSERT_TRUE(readOutput(dir_ / "out.pcd", output));
+  ASSERT_EQ(output.cloud.size(), cloud->size());
+  std::set<std::uint32_t> labels;
+  for (std::size_t i = 0; i + 1 < output.cloud.size(); ++i) {
+    EXPECT_EQ(output.cloud[i].x, (*cloud)[i].x);
+    EXPECT_EQ(output.cloud[i].z, (*cloud)[i].z);
+    labels.insert(output.cloud[i].label);
+  }
+  EXPECT_EQ(labels, (std::set<std::uint32_t>{1, 2}));
+  EXPECT_EQ(output.cloud.back().label, 0u) << "a NaN point must be in no segment";
+  EXPECT_EQ(output.cloud.back().rgba & 0xFFFFFFu, 0u) << "a point in no segment is black";
+}
+
+TEST_F(ToolTest, ReadsPlyAndNamesTheOutputAfterTheInput) {
+  ASSERT_EQ(pcl::io::savePLYFileBinary((dir_ / "spheres.ply").string(), *makeTwoSpheres()), 0);
+  const ToolRun r = run("spheres.ply -quiet");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_TRUE(lines(r.out).empty()) << "-quiet printed:\n" << r.out;
+  EXPECT_EQ(listDir(dir_), (std::set<std::string>{"spheres.ply", "spheres_segments.pcd"}));
+  Output output;
+  ASSERT_TRUE(readOutput(dir_ / "spheres_segments.pcd", output));
+  ASSERT_EQ(output.cloud.size(), 1200u);
+  // The two spheres never share a segment.
+  std::set<std::uint32_t> left, right;
+  for (std::size_t i = 0; i < output.cloud.size(); ++i)
+    (i < 600 ? left : right).insert(output.cloud[i].label);
+  for (std::uint32_t label : left)
+    EXPECT_EQ(right.count(label), 0u) << "label " << label << " on both spheres";
+}
+
+TEST_F(ToolTest, AcceptsEveryOption) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  const ToolRun r = run("shape.pcd out.pcd -k 12 -samples 30 -crossing 0.3 -area 0.01 -height 0.01 "
+                    "-beta 2 -alpha1 2 -alpha2 0.5 -threshold 0.05 -splits 50 -threads 1 -paper");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_GE(printedSegments(r.out), 1) << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "out.pcd"));
+}
+
+TEST_F(ToolTest, OverwritesAnExistingOutput) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  writeFile("out.pcd", "old contents\n");
+  const ToolRun r = run("shape.pcd out.pcd -segments 3");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  Output output;
+  ASSERT_TRUE(readOutput(dir_ / "out.pcd", output));
+  EXPECT_EQ(listDir(dir_), (std::set<std::string>{"shape.pcd", "out.pcd"}));
+}
+
+TEST_F(ToolTest, BadInputFilesFailCleanly) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  expectCleanFailure("missing.pcd out.pcd", "missing.pcd");
+  expectCleanFailure("missing.ply out.pcd", "missing.ply");
+
+  writeFile("zero_bytes.pcd", "");
+  expectCleanFailure("zero_bytes.pcd out.pcd", "zero_bytes.pcd");
+  writeFile("garbage.ply", "this is not a ply file\n");
+  expectCleanFailure("garbage.ply out.pcd", "garbage.ply");
+
+  writeFile("empty_cloud.pcd", "# .PCD v0.7 - Point Cloud Data file format\n"
+                               "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                               "WIDTH 0\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 0\n"
+                               "DATA ascii\n");
+  expectCleanFailure("empty_cloud.pcd out.pcd", "empty_cloud.pcd");
+
+  pcl::PointCloud<pcl::Intensity> intensity;
+  for (int i = 0; i < 50; ++i) {
+    pcl::Intensity p;
+    p.intensity = static_cast<float>(i);
+    intensity.push_back(p);
+  }
+  ASSERT_EQ(pcl::io::savePCDFileASCII((dir_ / "intensity.pcd").string(), intensity), 0);
+  expectCleanFailure("intensity.pcd out.pcd", "intensity.pcd");
+
+  pcl::PointCloud<pcl::PointXYZ> nans;
+  nans.push_back(pcl::PointXYZ(std::nanf(""), 0, 0));
+  nans.push_back(pcl::PointXYZ(0, std::nanf(""), 0));
+  nans.is_dense = false;
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "nans.pcd").string(), nans), 0);
+  expectCleanFailure("nans.pcd out.pcd", "nans.pcd");
+
+  fs::create_directory(dir_ / "a_directory.pcd");
+  expectCleanFailure("a_directory.pcd out.pcd", "a_directory.pcd");
+  expectCleanFailure("shape.xyz out.pcd", "shape.xyz");
+  expectCleanFailure("shape.pcd out.pcd extra.pcd");
+}
+
+TEST_F(ToolTest, UnknownFlagsFailCleanly) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  expectCleanFailure("shape.pcd out.pcd -bogus", "-bogus");
+  expectCleanFailure("shape.pcd out.pcd -bogus 3", "-bogus");
+  expectCleanFailure("-K 10 shape.pcd out.pcd", "-K");
+  expectCleanFailure("shape.pcd out.pcd --k 10", "--k");
+}
+
+TEST_F(ToolTest, BadParameterValuesFailCleanly) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"-k", "1"},           {"-k", "abc"},        {"-k", "2.5"},       {"-k", "10x"},
+      {"-k", "''"},          {"-samples", "-1"},   {"-crossing", "1.5"}, {"-crossing", "-0.1"},
+      {"-area", "2"},        {"-height", "nan"},   {"-beta", "0"},      {"-beta", "-1"},
+      {"-alpha1", "inf"},    {"-alpha2", "0"},     {"-threshold", "-0.1"},
+      {"-threshold", "nan"}, {"-segments", "0"},   {"-splits", "0"},    {"-threads", "-1"},
+      {"-k", "99999999999999"}};
+  for (const auto& option_value : bad)
+    expectCleanFailure("shape.pcd out.pcd " + option_value.first + " " + option_value.second,
+                       option_value.first);
+  expectCleanFailure("shape.pcd out.pcd -k", "-k");      // no value
+  expectCleanFailure("shape.pcd out.pcd -k 8 -k 9", "-k"); // given twice
+  expectCleanFailure("shape.pcd out.pcd -threshold 0.1 -segments 3");
+}
+
+TEST_F(ToolTest, UnwritableOutputFailsCleanly) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  expectCleanFailure("shape.pcd no_such_dir/out.pcd", "no_such_dir/out.pcd");
+  expectCleanFailure("shape.pcd out.txt", "out.txt");
+  expectCleanFailure("shape.pcd /proc/out.pcd", "/proc/out.pcd");
+
+  // A read-only directory (root writes anywhere, so only as another user).
+  if (::geteuid() != 0) {
+    fs::create_directory(dir_ / "read_only");
+    fs::permissions(dir_ / "read_only", fs::perms::owner_read | fs::perms::owner_exec);
+    expectCleanFailure("shape.pcd read_only/out.pcd", "read_only/out.pcd");
+    EXPECT_TRUE(fs::is_empty(dir_ / "read_only"));
+  }
+
+  // A failed run leaves an existing output as it was.
+  writeFile("out.pcd", "old contents\n");
+  expectCleanFailure("missing.pcd out.pcd");
+  EXPECT_EQ(readText(dir_ / "out.pcd"), "old contents\n");
+}
+
+} // namespace
