@@ -8,6 +8,7 @@
 #include "support/metrics.h"
 #include "support/shapes.h"
 
+#include <pcl/common/point_tests.h>
 #include <pcl/search/kdtree.h>
 
 #include <gtest/gtest.h>
@@ -187,7 +188,7 @@ TEST(Shapes, RigidMotionKeepsDistances) {
 // ---------------------------------------------------------------------------------------------
 // Segmenting the shapes
 
-struct Run {
+struct Segmentation {
   std::vector<pcl::PointIndices> segments;
   std::vector<int> labels; ///< segment per point, -1 for none
 };
@@ -211,12 +212,12 @@ void expectPartition(const Cloud& cloud, const std::vector<pcl::PointIndices>& s
 }
 
 /** \brief Segment with the default parameters, except the number of segments if > 0. */
-Run segment(const Cloud::Ptr& cloud, int num_segments) {
+Segmentation segment(const Cloud::Ptr& cloud, int num_segments) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
   if (num_segments > 0)
     seg.setNumberOfSegments(num_segments);
-  Run run;
+  Segmentation run;
   seg.extract(run.segments);
   expectPartition(*cloud, run.segments);
   run.labels = segmentsToLabels(run.segments, cloud->size());
@@ -233,7 +234,7 @@ class ShapeTest : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ShapeTest, NumberOfSegmentsModeFindsTheParts) {
   const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 1);
-  const Run run = segment(shape.cloud, shape.num_parts);
+  const Segmentation run = segment(shape.cloud, shape.num_parts);
   report("segments", run.segments.size());
   const double ri = randIndex(run.labels, shape.labels);
   report("rand_index", ri);
@@ -243,7 +244,7 @@ TEST_P(ShapeTest, NumberOfSegmentsModeFindsTheParts) {
 
 TEST_P(ShapeTest, DefaultThresholdFindsTheParts) {
   const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 1);
-  const Run run = segment(shape.cloud, 0);
+  const Segmentation run = segment(shape.cloud, 0);
   report("segments", run.segments.size());
   const double ri = randIndex(run.labels, shape.labels);
   report("rand_index", ri);
@@ -251,7 +252,7 @@ TEST_P(ShapeTest, DefaultThresholdFindsTheParts) {
   EXPECT_GE(ri, 0.85);
 }
 
-INSTANTIATE_TEST_SUITE_P(Shapes, ShapeTest,
+INSTANTIATE_TEST_SUITE_P(Generated, ShapeTest,
                          ::testing::Values("hand", "quadruped", "dumbbell", "two_objects"));
 
 class InvarianceTest : public ::testing::TestWithParam<std::string> {};
@@ -259,8 +260,8 @@ class InvarianceTest : public ::testing::TestWithParam<std::string> {};
 TEST_P(InvarianceTest, RigidMotion) {
   const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 1);
   const Cloud::Ptr moved = pcl_ncut_seg::test::applyRigidMotion(*shape.cloud, 11);
-  const Run before = segment(shape.cloud, shape.num_parts);
-  const Run after = segment(moved, shape.num_parts);
+  const Segmentation before = segment(shape.cloud, shape.num_parts);
+  const Segmentation after = segment(moved, shape.num_parts);
   // The same points in the same order: the results must agree with each other.
   const double ri = randIndex(before.labels, after.labels);
   report("rand_index_between_runs", ri);
@@ -271,7 +272,7 @@ TEST_P(InvarianceTest, RigidMotion) {
 TEST_P(InvarianceTest, Density) {
   for (const std::size_t n : {4000u, 8000u}) {
     const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), n, 2);
-    const Run run = segment(shape.cloud, shape.num_parts);
+    const Segmentation run = segment(shape.cloud, shape.num_parts);
     const double ri = randIndex(run.labels, shape.labels);
     report("rand_index_n" + std::to_string(n), ri);
     EXPECT_GE(ri, 0.90) << "n = " << n;
@@ -282,17 +283,17 @@ TEST_P(InvarianceTest, NonUniformSampling) {
   SamplingOptions options;
   options.density_ratio = 4.0;
   const LabeledShape shape = pcl_ncut_seg::test::makeShape(GetParam(), 4000, 3, options);
-  const Run run = segment(shape.cloud, shape.num_parts);
+  const Segmentation run = segment(shape.cloud, shape.num_parts);
   const double ri = randIndex(run.labels, shape.labels);
   report("rand_index", ri);
   EXPECT_GE(ri, 0.90);
 }
 
-INSTANTIATE_TEST_SUITE_P(Shapes, InvarianceTest,
+INSTANTIATE_TEST_SUITE_P(Generated, InvarianceTest,
                          ::testing::Values("hand", "quadruped", "dumbbell"));
 
 /** \brief Each segment lies within one object (so each object is a union of segments). */
-void expectNoSegmentSpansBothObjects(const LabeledShape& shape, const Run& run) {
+void expectNoSegmentSpansBothObjects(const LabeledShape& shape, const Segmentation& run) {
   for (std::size_t s = 0; s < run.segments.size(); ++s) {
     std::set<int> objects;
     for (const auto i : run.segments[s].indices)
@@ -303,7 +304,7 @@ void expectNoSegmentSpansBothObjects(const LabeledShape& shape, const Run& run) 
 
 TEST(TwoObjects, EachObjectIsOneSegmentWhenTwoAreAskedFor) {
   const LabeledShape shape = pcl_ncut_seg::test::makeTwoObjects(4000, 1);
-  const Run run = segment(shape.cloud, 2);
+  const Segmentation run = segment(shape.cloud, 2);
   ASSERT_EQ(run.segments.size(), 2u);
   expectNoSegmentSpansBothObjects(shape, run);
   EXPECT_DOUBLE_EQ(randIndex(run.labels, shape.labels), 1.0);
@@ -312,7 +313,7 @@ TEST(TwoObjects, EachObjectIsOneSegmentWhenTwoAreAskedFor) {
 TEST(TwoObjects, NoSegmentSpansBothObjectsWithTheThreshold) {
   for (const std::uint64_t seed : {1u, 2u}) {
     const LabeledShape shape = pcl_ncut_seg::test::makeTwoObjects(4000, seed);
-    const Run run = segment(shape.cloud, 0);
+    const Segmentation run = segment(shape.cloud, 0);
     report("segments_seed" + std::to_string(seed), run.segments.size());
     EXPECT_GE(run.segments.size(), 2u);
     expectNoSegmentSpansBothObjects(shape, run);
@@ -323,7 +324,7 @@ TEST(TwoObjects, FarApartAfterRigidMotionToo) {
   const LabeledShape shape = pcl_ncut_seg::test::makeTwoObjects(4000, 1);
   LabeledShape moved = shape;
   moved.cloud = pcl_ncut_seg::test::applyRigidMotion(*shape.cloud, 3);
-  const Run run = segment(moved.cloud, 2);
+  const Segmentation run = segment(moved.cloud, 2);
   ASSERT_EQ(run.segments.size(), 2u);
   expectNoSegmentSpansBothObjects(moved, run);
 }
@@ -338,7 +339,7 @@ TEST(EndToEnd, NonFinitePointsAreInNoSegment) {
     (*shape.cloud)[i].y = bad[(i / 37) % 2];
     shape.labels[i] = -1; // not scored
   }
-  const Run run = segment(shape.cloud, shape.num_parts);
+  const Segmentation run = segment(shape.cloud, shape.num_parts);
   const double ri = randIndex(run.labels, shape.labels);
   report("rand_index", ri);
   EXPECT_GE(ri, 0.90);

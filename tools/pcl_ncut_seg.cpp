@@ -81,11 +81,22 @@ void printHelp(const char* name) {
              d.getNumberOfSplitValues());
   print_info("    -threads N    = threads for the centrality phase, >= 0; 0 = all cores; the "
              "result does not depend on it (default: %u)\n", d.getNumberOfThreads());
-  print_info("    -paper        = follow the paper to the letter: no feature-width "
-             "normalisation, no joining of\n"
-             "                    supernode trees that meet at no saddle (default: off)\n");
+  print_info("    -paper        = the paper to the letter: no feature-width normalisation, no "
+             "joining of supernode trees that meet at no saddle (default: off)\n");
   print_info("    -quiet        = print errors only (default: off)\n");
   print_info("    -h            = this help\n");
+}
+
+bool g_quiet = false; // -quiet: errors only
+
+// Progress and results on stdout, unless -quiet.
+template <typename... Args> void info(const char* format, Args... args) {
+  if (!g_quiet)
+    print_info(format, args...);
+}
+template <typename... Args> void value(const char* format, Args... args) {
+  if (!g_quiet)
+    print_value(format, args...);
 }
 
 // One line on stderr, in PCL's style.
@@ -297,6 +308,18 @@ private:
   VERBOSITY_LEVEL level_;
 };
 
+bool hasXyz(const std::string& path, const pcl::PCLPointCloud2& blob) {
+  for (const char* name : {"x", "y", "z"}) {
+    const auto it = std::find_if(blob.fields.begin(), blob.fields.end(),
+                                 [name](const pcl::PCLPointField& f) { return f.name == name; });
+    if (it == blob.fields.end()) {
+      fail("'" + path + "' has no " + name + " field: need points with x, y and z");
+      return false;
+    }
+  }
+  return true;
+}
+
 /** Load a .pcd or .ply into XYZ points; on error print one line and return false. */
 bool loadCloud(const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud) {
   if (!isReadableFile(path)) {
@@ -309,30 +332,53 @@ bool loadCloud(const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud) {
       fail("cannot read '" + path + "': permission denied");
     return false;
   }
+  const bool ply = extension(path) == ".ply";
+  const std::string invalid = "cannot read '" + path + "': not a valid " + (ply ? "PLY" : "PCD") +
+                              " file";
   pcl::PCLPointCloud2 blob;
+  if (!ply) {
+    // PCL 1.13's PCDReader::read crashes on a file without a header; check the header first.
+    // It also tells a cloud without x, y, z or without points before its data is read.
+    Eigen::Vector4f origin;
+    Eigen::Quaternionf orientation;
+    int version = 0, data_type = 0;
+    unsigned int data_index = 0;
+    int status = -1;
+    {
+      SilencePcl silence;
+      try {
+        status = pcl::PCDReader().readHeader(path, blob, origin, orientation, version, data_type,
+                                             data_index);
+      } catch (const std::exception&) {
+        status = -1;
+      }
+    }
+    if (status < 0 || blob.fields.empty()) {
+      fail(invalid);
+      return false;
+    }
+    if (!hasXyz(path, blob))
+      return false;
+    if (static_cast<std::uint64_t>(blob.width) * blob.height == 0) {
+      fail("'" + path + "' contains no points");
+      return false;
+    }
+  }
   int status = -1;
   {
     SilencePcl silence;
     try {
-      status = extension(path) == ".ply" ? pcl::io::loadPLYFile(path, blob)
-                                         : pcl::io::loadPCDFile(path, blob);
+      status = ply ? pcl::io::loadPLYFile(path, blob) : pcl::io::loadPCDFile(path, blob);
     } catch (const std::exception&) {
       status = -1;
     }
   }
   if (status < 0) {
-    fail("cannot read '" + path + "': not a valid " +
-         (extension(path) == ".ply" ? std::string("PLY") : std::string("PCD")) + " file");
+    fail(invalid);
     return false;
   }
-  for (const char* name : {"x", "y", "z"}) {
-    const auto it = std::find_if(blob.fields.begin(), blob.fields.end(),
-                                 [name](const pcl::PCLPointField& f) { return f.name == name; });
-    if (it == blob.fields.end()) {
-      fail("'" + path + "' has no " + name + " field: need points with x, y and z");
-      return false;
-    }
-  }
+  if (!hasXyz(path, blob))
+    return false;
   if (static_cast<std::uint64_t>(blob.width) * blob.height == 0) {
     fail("'" + path + "' contains no points");
     return false;
@@ -408,38 +454,50 @@ private:
   std::string path_, tmp_;
 };
 
-/** x y z rgb label, rgb packed as a float as pcl::PointXYZRGB writes it (pcl_viewer colours
- * by it). */
+/** The output cloud: exactly the fields x y z rgb label (no padding), rgb packed into a float as
+ * pcl::PointXYZRGB stores it, so that pcl_viewer colours the points by segment. */
 pcl::PCLPointCloud2 makeOutput(const pcl::PointCloud<pcl::PointXYZL>& labeled,
                                const pcl::PointCloud<pcl::PointXYZRGB>& colored) {
-  pcl::PointCloud<pcl::PointXYZRGBL> out;
-  out.resize(labeled.size());
-  out.width = labeled.width;
-  out.height = labeled.height;
-  out.is_dense = labeled.is_dense;
-  out.header = labeled.header;
-  for (std::size_t i = 0; i < labeled.size(); ++i) {
-    pcl::PointXYZRGBL& p = out[i];
-    p.x = labeled[i].x;
-    p.y = labeled[i].y;
-    p.z = labeled[i].z;
-    p.label = labeled[i].label;
-    if (i < colored.size()) {
-      p.r = colored[i].r;
-      p.g = colored[i].g;
-      p.b = colored[i].b;
-    } else {
-      p.r = p.g = p.b = 0;
-    }
-    p.a = 255;
-  }
   pcl::PCLPointCloud2 blob;
-  pcl::toPCLPointCloud2(out, blob);
-  for (pcl::PCLPointField& f : blob.fields)
-    if (f.name == "rgba") {
-      f.name = "rgb";
-      f.datatype = pcl::PCLPointField::FLOAT32;
-    }
+  blob.header = labeled.header;
+  blob.width = labeled.width;
+  blob.height = labeled.height;
+  blob.is_dense = labeled.is_dense;
+  blob.is_bigendian = false;
+  const struct {
+    const char* name;
+    std::uint8_t type;
+  } fields[] = {{"x", pcl::PCLPointField::FLOAT32},
+                {"y", pcl::PCLPointField::FLOAT32},
+                {"z", pcl::PCLPointField::FLOAT32},
+                {"rgb", pcl::PCLPointField::FLOAT32},
+                {"label", pcl::PCLPointField::UINT32}};
+  std::uint32_t offset = 0;
+  for (const auto& f : fields) {
+    pcl::PCLPointField field;
+    field.name = f.name;
+    field.offset = offset;
+    field.datatype = f.type;
+    field.count = 1;
+    blob.fields.push_back(field);
+    offset += 4;
+  }
+  blob.point_step = offset;
+  blob.row_step = blob.point_step * blob.width;
+  blob.data.resize(static_cast<std::size_t>(blob.point_step) * labeled.size());
+  for (std::size_t i = 0; i < labeled.size(); ++i) {
+    std::uint8_t* out = &blob.data[i * blob.point_step];
+    const pcl::PointXYZL& p = labeled[i];
+    std::uint32_t rgb = 0; // black for points in no segment
+    if (i < colored.size() && p.label != 0)
+      rgb = (std::uint32_t(colored[i].r) << 16) | (std::uint32_t(colored[i].g) << 8) |
+            std::uint32_t(colored[i].b);
+    std::memcpy(out + 0, &p.x, 4);
+    std::memcpy(out + 4, &p.y, 4);
+    std::memcpy(out + 8, &p.z, 4);
+    std::memcpy(out + 12, &rgb, 4);
+    std::memcpy(out + 16, &p.label, 4);
+  }
   return blob;
 }
 
@@ -453,22 +511,23 @@ int main(int argc, char** argv) {
   Options opt;
   if (!parseCommandLine(argc, argv, opt))
     return 1;
-  if (opt.quiet)
+  if (opt.quiet) {
+    g_quiet = true;
     setVerbosityLevel(L_ERROR);
-
-  // Claim the output first, so an unwritable destination fails before the long computation.
-  AtomicOutput output;
-  if (!output.open(opt.output))
-    return 1;
+  }
 
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
   if (!loadCloud(opt.input, *cloud))
     return 1;
-  print_info("Segmenting ");
-  print_value("%s", opt.input.c_str());
-  print_info(opt.bundled ? " (bundled model): " : ": ");
-  print_value("%zu", cloud->size());
-  print_info(" points\n");
+  // Claim the output now, so that an unwritable destination fails before the long computation.
+  AtomicOutput output;
+  if (!output.open(opt.output))
+    return 1;
+  info("Segmenting ");
+  value("%s", opt.input.c_str());
+  info(opt.bundled ? " (bundled model): " : ": ");
+  value("%zu", cloud->size());
+  info(" points\n");
 
   Segmenter seg;
   seg.setInputCloud(cloud);
@@ -522,23 +581,23 @@ int main(int argc, char** argv) {
                 {"HSeg", times.hierarchy},   {"PSeg", times.points},
                 {"total", times.total()}};
   for (const auto& phase : phases) {
-    print_info("%-5s: ", phase.name);
-    print_value("%.3f", phase.seconds);
-    print_info(" s\n");
+    info("%-5s: ", phase.name);
+    value("%.3f", phase.seconds);
+    info(" s\n");
   }
   const std::size_t n = seg.getAnalysedIndices().size();
-  print_info("n    : ");
-  print_value("%zu", n);
-  print_info(" points segmented\n");
-  print_info("m    : ");
-  print_value("%zu", seg.getNumberOfSupernodes(false));
-  print_info(" supernodes\n");
-  print_info("l    : ");
-  print_value("%zu", seg.getNumberOfSupernodes(true));
-  print_info(" supernodes after refinement\n");
-  print_info("t    : ");
-  print_value("%zu", segments.size());
-  print_info(" segments\n");
+  info("n    : ");
+  value("%zu", n);
+  info(" points segmented\n");
+  info("m    : ");
+  value("%zu", seg.getNumberOfSupernodes(false));
+  info(" supernodes\n");
+  info("l    : ");
+  value("%zu", seg.getNumberOfSupernodes(true));
+  info(" supernodes after refinement\n");
+  info("t    : ");
+  value("%zu", segments.size());
+  info(" segments\n");
 
   const pcl::PointCloud<pcl::PointXYZL>::Ptr labeled = seg.getLabeledCloud();
   const pcl::PointCloud<pcl::PointXYZRGB>::Ptr colored = seg.getColoredCloud();
@@ -548,8 +607,8 @@ int main(int argc, char** argv) {
   }
   if (!output.commit(makeOutput(*labeled, *colored)))
     return 1;
-  print_info("Wrote ");
-  print_value("%s", opt.output.c_str());
-  print_info(" (x y z rgb label)\n");
+  info("Wrote ");
+  value("%s", opt.output.c_str());
+  info(" (x y z rgb label)\n");
   return 0;
 }

@@ -139,27 +139,35 @@ Bisection bisect(const WeightedGraph& graph, std::size_t num_supernodes,
     double total = 0.0;
     for (std::size_t i = 0; i < k; ++i)
       total += g.degree[core[i]];
-    std::vector<bool> in1(k, false);
-    double cut = 0.0, vol1 = 0.0, best = std::numeric_limits<double>::infinity();
-    std::size_t moved = 0, members1 = 0, best_moved = 0;
-    const std::size_t members_core = members;
-    for (int t = 1; t <= num_splits; ++t) {
-      const double gamma = lo + (hi - lo) * t / (num_splits + 1.0);
-      while (moved < k && y[order[moved]] < gamma) {
-        const std::uint32_t v = order[moved++];
-        in1[v] = true;
-        vol1 += g.degree[core[v]];
-        members1 += is_member(core[v]);
-        for (const auto& [u, w] : g.adj[core[v]])
-          cut += in1[pos[u]] ? -w : w;
+    // Uniform split values as in the paper; if none leaves points on both sides (a tiny
+    // cluster of values at one end), every gap between consecutive values.
+    std::size_t best_moved = 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const bool every_gap : {false, true}) {
+      std::vector<bool> in1(k, false);
+      double cut = 0.0, vol1 = 0.0;
+      std::size_t moved = 0, members1 = 0;
+      const std::size_t steps = every_gap ? k - 1 : static_cast<std::size_t>(num_splits);
+      for (std::size_t t = 1; t <= steps; ++t) {
+        const double gamma = lo + (hi - lo) * t / (num_splits + 1.0);
+        while (moved < k && (every_gap ? moved < t : y[order[moved]] < gamma)) {
+          const std::uint32_t v = order[moved++];
+          in1[v] = true;
+          vol1 += g.degree[core[v]];
+          members1 += is_member(core[v]);
+          for (const auto& [u, w] : g.adj[core[v]])
+            cut += in1[pos[u]] ? -w : w;
+        }
+        if (members1 == 0 || members1 == members)
+          continue; // both sides must hold points
+        const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
+        if (ncut < best) {
+          best = ncut;
+          best_moved = moved;
+        }
       }
-      if (members1 == 0 || members1 == members_core)
-        continue; // both sides must hold points
-      const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
-      if (ncut < best) {
-        best = ncut;
-        best_moved = moved;
-      }
+      if (best_moved > 0)
+        break;
     }
     if (best_moved == 0)
       return out;

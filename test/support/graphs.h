@@ -1,0 +1,83 @@
+// Small graphs for the phase-by-phase tests.
+#pragma once
+
+#include <pcl_ncut_seg/core/csr_graph.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <tuple>
+#include <vector>
+
+namespace pcl_ncut_seg {
+namespace test {
+
+/// An undirected graph from (a, b, length) triples.
+inline CsrGraph graphFromEdges(std::size_t n,
+                               const std::vector<std::tuple<int, int, float>>& edges) {
+  std::vector<std::vector<std::pair<std::uint32_t, float>>> rows(n);
+  for (const auto& [a, b, w] : edges) {
+    rows[a].emplace_back(b, w);
+    rows[b].emplace_back(a, w);
+  }
+  CsrGraph g;
+  g.offsets.push_back(0);
+  for (auto& row : rows) {
+    std::sort(row.begin(), row.end());
+    for (const auto& [t, w] : row) {
+      g.targets.push_back(t);
+      g.lengths.push_back(w);
+    }
+    g.offsets.push_back(static_cast<std::uint32_t>(g.targets.size()));
+  }
+  return g;
+}
+
+/// n random points in the unit cube and their brute-force k nearest neighbours.
+inline std::vector<float> randomPoints(std::size_t n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<float> xyz(3 * n);
+  for (float& v : xyz)
+    v = static_cast<float>(rng() % 100000) / 100000.0f;
+  return xyz;
+}
+
+inline std::vector<std::uint32_t> bruteForceKnn(const std::vector<float>& xyz, std::size_t k) {
+  const std::size_t n = xyz.size() / 3;
+  std::vector<std::uint32_t> knn(n * k);
+  for (std::size_t p = 0; p < n; ++p) {
+    std::vector<std::pair<float, std::uint32_t>> d;
+    for (std::size_t q = 0; q < n; ++q) {
+      if (q == p)
+        continue;
+      float s = 0;
+      for (int c = 0; c < 3; ++c)
+        s += (xyz[3 * p + c] - xyz[3 * q + c]) * (xyz[3 * p + c] - xyz[3 * q + c]);
+      d.emplace_back(s, static_cast<std::uint32_t>(q));
+    }
+    std::sort(d.begin(), d.end());
+    for (std::size_t j = 0; j < k; ++j)
+      knn[p * k + j] = d[j].second;
+  }
+  return knn;
+}
+
+/// All-pairs shortest paths (Floyd-Warshall), the brute-force reference for geodesics.
+inline std::vector<double> allPairsShortestPaths(const CsrGraph& g) {
+  const std::size_t n = g.numVertices();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> d(n * n, inf);
+  for (std::size_t v = 0; v < n; ++v) {
+    d[v * n + v] = 0;
+    for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
+      d[v * n + g.targets[e]] = std::min<double>(d[v * n + g.targets[e]], g.lengths[e]);
+  }
+  for (std::size_t k = 0; k < n; ++k)
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j)
+        d[i * n + j] = std::min(d[i * n + j], d[i * n + k] + d[k * n + j]);
+  return d;
+}
+
+} // namespace test
+} // namespace pcl_ncut_seg

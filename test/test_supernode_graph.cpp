@@ -1,0 +1,107 @@
+#include <pcl_ncut_seg/core/supernode_graph.h>
+#include <support/graphs.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pcl_ncut_seg;
+
+TEST(Connectivity, Eq8ByHand) {
+  // Path 0 - 1 - 2, unit lengths, f = 0, 0, 1; supernodes {0, 1} and {2}.
+  const CsrGraph g = test::graphFromEdges(3, {{0, 1, 1.f}, {1, 2, 1.f}});
+  const Connectivity c = supernodeConnectivity(g, {0, 0, 1}, {0, 0, 1});
+  ASSERT_EQ(c.size(), 2u);                         // (0,0) and (0,1); supernode 1 has no inner edge
+  EXPECT_NEAR(c.at({0, 0}), 2.0, 1e-12);           // 0->1 and 1->0
+  EXPECT_NEAR(c.at({0, 1}), std::sqrt(2.0), 1e-7); // 1->2 with ||.||_2 of eq. (3)
+}
+
+namespace {
+// s0 and s1 terminate at the saddle where s2 was created (Fig. 6).
+Supernodes threeSupernodes() {
+  Supernodes sn;
+  sn.label = {0, 1, 2};
+  sn.origin = {0, 1, 2};
+  sn.at_saddle = {false, false, true};
+  sn.parent = {2, 2, kNone};
+  sn.children = {{}, {}, {0, 1}};
+  return sn;
+}
+FeatureStats threeStats() {
+  FeatureStats st;
+  st.height = {1, 2, 4};
+  st.area = {2, 2, 8};
+  st.width = {2, 1, 2};
+  return st;
+}
+Connectivity threeConn() {
+  return {{{0, 0}, 4.0}, {{1, 1}, 2.0}, {{2, 2}, 8.0}, {{0, 2}, 1.0}, {{1, 2}, 3.0}};
+}
+double weight(const WeightedGraph& g, std::uint32_t a, std::uint32_t b) {
+  for (const auto& e : g.edges)
+    if ((e.a == a && e.b == b) || (e.a == b && e.b == a))
+      return e.w;
+  return -1;
+}
+} // namespace
+
+TEST(SupernodeGraph, Weights7And9ByHand) {
+  SimilarityParams p; // beta 2, alpha1 2, alpha2 0.5
+  p.normalize_width = false;
+  p.connect_adjacent_trees = false;
+  const WeightedGraph g = buildSupernodeGraph(threeSupernodes(), threeStats(), threeConn(), p);
+  EXPECT_EQ(g.num_vertices, 6u);
+  EXPECT_EQ(g.edges.size(), 5u); // three r-m, two m-m
+  // eq. (7): exp(-(1 / (beta f_w)) (1 - conn_ii / max conn_jj)), max conn_jj = 8
+  EXPECT_NEAR(weight(g, 0, 3), std::exp(-0.125), 1e-12);
+  EXPECT_NEAR(weight(g, 1, 4), std::exp(-0.375), 1e-12);
+  EXPECT_NEAR(weight(g, 2, 5), 1.0, 1e-12);
+  // eq. (9) for m0 - m2: d1 = 3/3, d2 = 1 - 1/3, alpha_02 = 0.5 * 2/2
+  EXPECT_NEAR(weight(g, 3, 5), std::exp(-1.0 / 2.0 - (2.0 / 3.0) / 0.5), 1e-12);
+  // m1 - m2: d1 = 2/3, d2 = 0, alpha_12 = 0.5 * 1/2
+  EXPECT_NEAR(weight(g, 4, 5), std::exp(-(2.0 / 3.0) / 2.0), 1e-12);
+  EXPECT_LT(weight(g, 3, 4), 0); // no edge between supernodes that share no saddle
+}
+
+TEST(SupernodeGraph, WidthNormalisationMakesWeightsUnitFree) {
+  SimilarityParams p;
+  p.connect_adjacent_trees = false;
+  FeatureStats scaled = threeStats(); // the same shape in units 10x larger
+  for (std::size_t i = 0; i < 3; ++i) {
+    scaled.height[i] *= 10;
+    scaled.area[i] *= 100;
+    scaled.width[i] *= 10;
+  }
+  Connectivity conn = threeConn();
+  for (auto& kv : conn)
+    kv.second *= 10;
+  const WeightedGraph a = buildSupernodeGraph(threeSupernodes(), threeStats(), threeConn(), p);
+  const WeightedGraph b = buildSupernodeGraph(threeSupernodes(), scaled, conn, p);
+  ASSERT_EQ(a.edges.size(), b.edges.size());
+  for (std::size_t i = 0; i < a.edges.size(); ++i)
+    EXPECT_NEAR(a.edges[i].w, b.edges[i].w, 1e-12);
+}
+
+TEST(SupernodeGraph, AdjacentTreesWithoutSaddleAreJoinedAtTheirStrongestContact) {
+  Supernodes sn;
+  sn.label = {0, 1, 2};
+  sn.origin = {0, 1, 2};
+  sn.at_saddle = {false, false, false};
+  sn.parent = {kNone, kNone, kNone};
+  sn.children = {{}, {}, {}};
+  FeatureStats st;
+  st.height = {1, 1, 1};
+  st.area = {1, 1, 1};
+  st.width = {1, 1, 1};
+  const Connectivity conn = {{{0, 1}, 1.0}, {{0, 2}, 5.0}, {{1, 2}, 2.0}};
+  SimilarityParams p;
+  p.connect_adjacent_trees = false;
+  EXPECT_EQ(buildSupernodeGraph(sn, st, conn, p).edges.size(), 3u); // r-m only
+  p.connect_adjacent_trees = true;
+  const WeightedGraph g = buildSupernodeGraph(sn, st, conn, p);
+  // A maximum spanning forest: {0, 2} then {1, 2}; {0, 1} would close a cycle.
+  EXPECT_EQ(g.edges.size(), 5u);
+  EXPECT_GT(weight(g, 3, 5), 0);
+  EXPECT_GT(weight(g, 4, 5), 0);
+  EXPECT_LT(weight(g, 3, 4), 0);
+}
