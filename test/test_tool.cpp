@@ -81,8 +81,7 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr makeShape() {
     float r;
   };
   const float R = 1.0f, r = 0.3f, len = 2.2f;
-  const std::vector<Eigen::Vector3f> dirs = {
-      {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}};
+  const std::vector<Eigen::Vector3f> dirs = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}};
   std::vector<Capsule> capsules;
   for (const auto& d : dirs)
     capsules.push_back({d * 0.5f * R, d * (R + len), r});
@@ -109,7 +108,9 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr makeShape() {
   };
 
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  auto add = [&](const Eigen::Vector3f& p) { cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z())); };
+  auto add = [&](const Eigen::Vector3f& p) {
+    cloud->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  };
   for (int i = 0; i < 1400; ++i) {
     const Eigen::Vector3f p = R * randomDirection();
     if (!inside(p, -1, true))
@@ -243,9 +244,9 @@ protected:
 TEST_F(ToolTest, HelpListsEveryOptionWithItsDefault) {
   const ToolRun r = run("-h");
   EXPECT_EQ(r.status, 0);
-  for (const char* option : {"-k", "-samples", "-crossing", "-area", "-height", "-beta", "-alpha1",
-                             "-alpha2", "-threshold", "-segments", "-splits", "-threads",
-                             "-paper", "-quiet"}) {
+  for (const char* option :
+       {"-k", "-samples", "-crossing", "-area", "-height", "-beta", "-alpha1", "-alpha2",
+        "-threshold", "-segments", "-splits", "-threads", "-paper", "-quiet"}) {
     bool found = false;
     for (const std::string& line : lines(r.out))
       if (line.find(std::string(option) + " ") != std::string::npos &&
@@ -355,8 +356,9 @@ TEST_F(ToolTest, ReadsPlyAndNamesTheOutputAfterTheInput) {
 
 TEST_F(ToolTest, AcceptsEveryOption) {
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
-  const ToolRun r = run("shape.pcd out.pcd -k 12 -samples 30 -crossing 0.3 -area 0.01 -height 0.01 "
-                    "-beta 2 -alpha1 2 -alpha2 0.5 -threshold 0.05 -splits 50 -threads 1 -paper");
+  const ToolRun r =
+      run("shape.pcd out.pcd -k 12 -samples 30 -crossing 0.3 -area 0.01 -height 0.01 "
+          "-beta 2 -alpha1 2 -alpha2 0.5 -threshold 0.05 -splits 50 -threads 1 -paper");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_GE(printedSegments(r.out), 1) << r.out;
   EXPECT_TRUE(fs::exists(dir_ / "out.pcd"));
@@ -421,16 +423,15 @@ TEST_F(ToolTest, UnknownFlagsFailCleanly) {
 TEST_F(ToolTest, BadParameterValuesFailCleanly) {
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {"-k", "1"},           {"-k", "abc"},        {"-k", "2.5"},       {"-k", "10x"},
-      {"-k", "''"},          {"-samples", "-1"},   {"-crossing", "1.5"}, {"-crossing", "-0.1"},
-      {"-area", "2"},        {"-height", "nan"},   {"-beta", "0"},      {"-beta", "-1"},
-      {"-alpha1", "inf"},    {"-alpha2", "0"},     {"-threshold", "-0.1"},
-      {"-threshold", "nan"}, {"-segments", "0"},   {"-splits", "0"},    {"-threads", "-1"},
-      {"-k", "99999999999999"}};
+      {"-k", "1"},        {"-k", "abc"},      {"-k", "2.5"},          {"-k", "10x"},
+      {"-k", "''"},       {"-samples", "-1"}, {"-crossing", "1.5"},   {"-crossing", "-0.1"},
+      {"-area", "2"},     {"-height", "nan"}, {"-beta", "0"},         {"-beta", "-1"},
+      {"-alpha1", "inf"}, {"-alpha2", "0"},   {"-threshold", "-0.1"}, {"-threshold", "nan"},
+      {"-segments", "0"}, {"-splits", "0"},   {"-threads", "-1"},     {"-k", "99999999999999"}};
   for (const auto& option_value : bad)
     expectCleanFailure("shape.pcd out.pcd " + option_value.first + " " + option_value.second,
                        option_value.first);
-  expectCleanFailure("shape.pcd out.pcd -k", "-k");      // no value
+  expectCleanFailure("shape.pcd out.pcd -k", "-k");        // no value
   expectCleanFailure("shape.pcd out.pcd -k 8 -k 9", "-k"); // given twice
   expectCleanFailure("shape.pcd out.pcd -threshold 0.1 -segments 3");
 }

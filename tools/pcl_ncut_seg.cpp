@@ -10,9 +10,9 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <pcl/PCLPointCloud2.h>
-#include <pcl/conversions.h>
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
+#include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 #include <pcl/point_cloud.h>
@@ -42,9 +42,9 @@ namespace {
 using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
 
 // Options that take a value, and switches. Anything else starting with '-' is an error.
-const std::vector<std::string> kValueOptions = {"-k",     "-samples", "-crossing", "-area",
-                                                "-height", "-beta",    "-alpha1",   "-alpha2",
-                                                "-threshold", "-segments", "-splits", "-threads"};
+const std::vector<std::string> kValueOptions = {"-k",         "-samples",  "-crossing", "-area",
+                                                "-height",    "-beta",     "-alpha1",   "-alpha2",
+                                                "-threshold", "-segments", "-splits",   "-threads"};
 const std::vector<std::string> kSwitches = {"-paper", "-quiet", "-h", "--help"};
 
 const char* kBundledModel = "hand.pcd";
@@ -61,26 +61,33 @@ void printHelp(const char* name) {
              kBundledModel);
   print_info("  where options are:\n");
   print_info("    -k K          = nearest neighbours per point in the kNN graph, >= 2 "
-             "(default: %d)\n", d.getNumberOfNeighbours());
+             "(default: %d)\n",
+             d.getNumberOfNeighbours());
   print_info("    -samples S    = centrality samples per connected component, >= 0; 0 = "
-             "ceil(sqrt(n)) as in the paper (default: %d)\n", d.getNumberOfSamples());
+             "ceil(sqrt(n)) as in the paper (default: %d)\n",
+             d.getNumberOfSamples());
   print_info("    -crossing F   = feature-crossing fraction of |N(p)| (Sec. 4.2), in [0, 1] "
-             "(default: %g)\n", d.getCrossingFraction());
+             "(default: %g)\n",
+             d.getCrossingFraction());
   print_info("    -area F       = small supernodes: feature area below this fraction of the "
-             "total, in [0, 1] (default: %g)\n", d.getAreaFraction());
+             "total, in [0, 1] (default: %g)\n",
+             d.getAreaFraction());
   print_info("    -height F     = skinny supernodes: feature height below this fraction of the "
-             "largest, in [0, 1] (default: %g)\n", d.getHeightFraction());
+             "largest, in [0, 1] (default: %g)\n",
+             d.getHeightFraction());
   print_info("    -beta B       = beta of eq. (7), > 0 (default: %g)\n", d.getBeta());
   print_info("    -alpha1 A     = alpha1 of eq. (9), > 0 (default: %g)\n", d.getAlpha1());
   print_info("    -alpha2 A     = alpha2 of eq. (9), > 0 (default: %g)\n", d.getAlpha2());
   print_info("    -threshold T  = normalized-cut stopping threshold: a part is bisected while its "
-             "best NCut <= T, >= 0 (default: %g)\n", d.getThreshold());
+             "best NCut <= T, >= 0 (default: %g)\n",
+             d.getThreshold());
   print_info("    -segments K   = ask for K segments instead of using the threshold, > 0 "
              "(default: off)\n");
   print_info("    -splits N     = split values tried on each eigenvector, >= 1 (default: %d)\n",
              d.getNumberOfSplitValues());
   print_info("    -threads N    = threads for the centrality phase, >= 0; 0 = all cores; the "
-             "result does not depend on it (default: %u)\n", d.getNumberOfThreads());
+             "result does not depend on it (default: %u)\n",
+             d.getNumberOfThreads());
   print_info("    -paper        = the paper to the letter: no feature-width normalisation, no "
              "joining of supernode trees that meet at no saddle (default: off)\n");
   print_info("    -quiet        = print errors only (default: off)\n");
@@ -100,7 +107,9 @@ template <typename... Args> void value(const char* format, Args... args) {
 }
 
 // One line on stderr, in PCL's style.
-void fail(const std::string& message) { print_error("Error: %s\n", message.c_str()); }
+void fail(const std::string& message) {
+  print_error("Error: %s\n", message.c_str());
+}
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
@@ -333,8 +342,8 @@ bool loadCloud(const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud) {
     return false;
   }
   const bool ply = extension(path) == ".ply";
-  const std::string invalid = "cannot read '" + path + "': not a valid " + (ply ? "PLY" : "PCD") +
-                              " file";
+  const std::string invalid =
+      "cannot read '" + path + "': not a valid " + (ply ? "PLY" : "PCD") + " file";
   pcl::PCLPointCloud2 blob;
   if (!ply) {
     // PCL 1.13's PCDReader::read crashes on a file without a header; check the header first.
@@ -454,8 +463,9 @@ private:
   std::string path_, tmp_;
 };
 
-/** The output cloud: exactly the fields x y z rgb label (no padding), rgb packed into a float as
- * pcl::PointXYZRGB stores it, so that pcl_viewer colours the points by segment. */
+/** The output cloud: exactly the fields x y z rgb label (no padding). rgb is packed into a float
+ * as pcl::PointXYZRGB stores it (alpha 0, so the float is finite), so pcl_viewer colours the
+ * points by segment; points in no segment (label 0) are black. */
 pcl::PCLPointCloud2 makeOutput(const pcl::PointCloud<pcl::PointXYZL>& labeled,
                                const pcl::PointCloud<pcl::PointXYZRGB>& colored) {
   pcl::PCLPointCloud2 blob;
@@ -576,9 +586,8 @@ int main(int argc, char** argv) {
   const struct {
     const char* name;
     double seconds;
-  } phases[] = {{"kNN", times.knn},          {"Cen", times.centrality},
-                {"Snod", times.supernodes},  {"LRef", times.refinement},
-                {"HSeg", times.hierarchy},   {"PSeg", times.points},
+  } phases[] = {{"kNN", times.knn},         {"Cen", times.centrality}, {"Snod", times.supernodes},
+                {"LRef", times.refinement}, {"HSeg", times.hierarchy}, {"PSeg", times.points},
                 {"total", times.total()}};
   for (const auto& phase : phases) {
     info("%-5s: ", phase.name);

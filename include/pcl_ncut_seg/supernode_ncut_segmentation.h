@@ -106,7 +106,7 @@ public:
   double getAlpha2() const { return similarity_.alpha2; }
 
   /** \brief Normalized-cut stopping threshold (Sec. 5.2): a part is bisected while its best
-   * NCut is at most this value; >= 0 (default 0.1). Ignored when a number of segments is set. */
+   * NCut is at most this value; >= 0 (default 0.02). Ignored when a number of segments is set. */
   void setThreshold(double threshold);
   double getThreshold() const { return cut_.threshold; }
 

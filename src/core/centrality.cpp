@@ -68,15 +68,14 @@ void dijkstra(const BoostGraph& g, std::uint32_t source, float* dist, WeightMap 
 std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source) {
   const BoostGraph g = toBoost(graph);
   std::vector<float> dist(graph.numVertices(), kInf);
-  dijkstra(g, source, dist.data(),
-           boost::make_iterator_property_map(graph.lengths.data(),
-                                             boost::get(boost::edge_index, g)),
-           boost::default_dijkstra_visitor());
+  dijkstra(
+      g, source, dist.data(),
+      boost::make_iterator_property_map(graph.lengths.data(), boost::get(boost::edge_index, g)),
+      boost::default_dijkstra_visitor());
   return dist;
 }
 
-Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples,
-                             unsigned num_threads) {
+Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads) {
   const std::size_t n = graph.numVertices();
   Centrality out;
   out.f.assign(n, 0.0f);
@@ -88,8 +87,8 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples,
     members[out.component[v]].push_back(v);
 
   const BoostGraph g = toBoost(graph);
-  const auto length = boost::make_iterator_property_map(graph.lengths.data(),
-                                                        boost::get(boost::edge_index, g));
+  const auto length =
+      boost::make_iterator_property_map(graph.lengths.data(), boost::get(boost::edge_index, g));
   std::vector<float> h(n, kInf), dist(n, kInf);
   std::vector<std::uint32_t> touched;
   // Per component: its samples and a fixed-point quantum that bounds every distance in it.
@@ -182,8 +181,8 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples,
     for (const auto& acc : partial)
       sum += acc[v];
     const std::uint32_t c = out.component[v];
-    out.f[v] = static_cast<float>(static_cast<double>(sum) * quantum[c] /
-                                  static_cast<double>(count[c]));
+    out.f[v] =
+        static_cast<float>(static_cast<double>(sum) * quantum[c] / static_cast<double>(count[c]));
   }
   out.samples.reserve(tasks.size());
   for (const auto& t : tasks)

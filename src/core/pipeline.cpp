@@ -24,20 +24,19 @@ Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times
   Stopwatch clock;
   a.centrality = computeCentrality(a.graph, params.num_samples, params.num_threads);
   times.centrality = clock.lap();
-  a.raw_supernodes =
-      extractSupernodes(a.graph, a.centrality.f, params.crossing_fraction);
+  a.raw_supernodes = extractSupernodes(a.graph, a.centrality.f, params.crossing_fraction);
   times.supernodes = clock.lap();
   a.radii = pointRadii(a.graph, a.centrality.f);
-  a.supernodes = refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes,
-                                  params.refinement);
+  a.supernodes =
+      refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
   times.refinement = clock.lap();
   return a;
 }
 
-CutResult cut(const Analysis& analysis, const SimilarityParams& similarity,
-              const CutParams& params, PhaseTimes& times) {
+CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, const CutParams& params,
+              PhaseTimes& times) {
   CutResult r;
   Stopwatch clock;
   const std::size_t l = analysis.supernodes.size();

@@ -105,8 +105,8 @@ struct Work {
         const std::uint32_t t = label[g.targets[e]];
         if (t == self)
           continue;
-        auto it = std::find_if(count.begin(), count.end(),
-                               [t](const auto& c) { return c.first == t; });
+        auto it =
+            std::find_if(count.begin(), count.end(), [t](const auto& c) { return c.first == t; });
         if (it == count.end())
           count.emplace_back(t, 1);
         else
@@ -185,129 +185,145 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
 
   // 1. Merge-up: a small supernode created at a saddle goes back to the supernodes that
   //    terminate there. Its points join them by growing from them, highest f first.
+  // Steps 1 and 2 repeat until nothing merges: a merge moves children and grows supernodes,
+  // which can make another supernode eligible.
   std::vector<std::uint32_t> by_f;
-  for (std::uint32_t s = 0; s < m; ++s) {
-    if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
-      continue;
-    const std::vector<std::uint32_t> kids = w.children[s];
-    by_f = w.points[s];
-    std::sort(by_f.begin(), by_f.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return f[a] > f[b] || (f[a] == f[b] && a < b);
-    });
-    std::vector<std::uint32_t> pending = by_f;
-    w.points[s].clear();
-    w.area[s] = 0.0;
-    for (bool changed = true; changed && !pending.empty();) {
-      changed = false;
-      std::vector<std::uint32_t> rest;
-      for (std::uint32_t p : pending) {
-        std::uint32_t best = kNone, best_count = 0;
-        for (std::uint32_t kid : kids) {
-          std::uint32_t c = 0;
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-            c += w.label[graph.targets[e]] == kid;
-          if (c > best_count) {
-            best = kid;
-            best_count = c;
+  // Steps 1-3 repeat until nothing changes (a few rounds at most): the kept region of a
+  // split supernode is re-tested too.
+  for (int round = 0; round < 8; ++round) {
+    bool changed = false;
+    for (bool merged = changed = true; merged;) {
+      merged = false;
+      for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
+        if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
+          continue;
+        merged = changed = true;
+        const std::vector<std::uint32_t> kids = w.children[s];
+        by_f = w.points[s];
+        std::sort(by_f.begin(), by_f.end(), [&](std::uint32_t a, std::uint32_t b) {
+          return f[a] > f[b] || (f[a] == f[b] && a < b);
+        });
+        std::vector<std::uint32_t> pending = by_f;
+        w.points[s].clear();
+        w.area[s] = 0.0;
+        for (bool changed = true; changed && !pending.empty();) {
+          changed = false;
+          std::vector<std::uint32_t> rest;
+          for (std::uint32_t p : pending) {
+            std::uint32_t best = kNone, best_count = 0;
+            for (std::uint32_t kid : kids) {
+              std::uint32_t c = 0;
+              for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+                c += w.label[graph.targets[e]] == kid;
+              if (c > best_count) {
+                best = kid;
+                best_count = c;
+              }
+            }
+            if (best == kNone) {
+              rest.push_back(p);
+            } else {
+              w.addPoint(best, p, f, point_area[p]);
+              changed = true;
+            }
+          }
+          pending.swap(rest);
+        }
+        // Points that never touch a child: the largest child takes them; step 3 re-tests them.
+        std::uint32_t largest = kids.front();
+        for (std::uint32_t kid : kids)
+          if (w.area[kid] > w.area[largest])
+            largest = kid;
+        for (std::uint32_t p : pending)
+          w.addPoint(largest, p, f, point_area[p]);
+        w.replaceChild(w.parent[s], s, kids);
+        if (w.parent[s] == kNone)
+          for (std::uint32_t kid : kids)
+            w.parent[kid] = kNone;
+        w.children[s].clear();
+        w.parent[s] = kNone;
+        w.alive[s] = false;
+      }
+
+      // 2. Merge-down: a skinny supernode, or a small one not merged up, that terminates at a
+      //    saddle joins the supernode created there.
+      for (std::uint32_t s = 0; s < w.alive.size(); ++s)
+        if (w.alive[s] && w.parent[s] != kNone && (skinny(s) || small(s))) {
+          w.mergeInto(s, w.parent[s], f, point_area);
+          merged = changed = true;
+        }
+    }
+
+    // 3. Disconnected regions: all but the largest are re-tested.
+    std::vector<std::uint32_t> region(n, kNone);
+    const std::size_t before_regions = w.alive.size();
+    for (std::uint32_t s = 0; s < before_regions; ++s) {
+      if (!w.alive[s] || w.points[s].empty())
+        continue;
+      std::vector<std::vector<std::uint32_t>> regions;
+      std::vector<std::uint32_t> stack;
+      for (std::uint32_t seed : w.points[s]) {
+        if (region[seed] != kNone)
+          continue;
+        const auto r = static_cast<std::uint32_t>(regions.size());
+        regions.emplace_back();
+        region[seed] = r;
+        stack.push_back(seed);
+        while (!stack.empty()) {
+          const std::uint32_t p = stack.back();
+          stack.pop_back();
+          regions[r].push_back(p);
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+            const std::uint32_t q = graph.targets[e];
+            if (w.label[q] == s && region[q] == kNone) {
+              region[q] = r;
+              stack.push_back(q);
+            }
           }
         }
-        if (best == kNone) {
-          rest.push_back(p);
+      }
+      for (std::uint32_t p : w.points[s])
+        region[p] = kNone;
+      if (regions.size() < 2)
+        continue;
+      changed = true;
+      std::size_t keep = 0;
+      for (std::size_t r = 1; r < regions.size(); ++r)
+        if (regions[r].size() > regions[keep].size())
+          keep = r;
+      // Rebuild s from the kept region, then place the others.
+      w.points[s].clear();
+      w.area[s] = 0.0;
+      w.fmin[s] = std::numeric_limits<float>::infinity();
+      w.fmax[s] = -std::numeric_limits<float>::infinity();
+      for (std::uint32_t p : regions[keep])
+        w.addPoint(s, p, f, point_area[p]);
+      for (std::size_t r = 0; r < regions.size(); ++r) {
+        if (r == keep)
+          continue;
+        double area = 0.0;
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+        for (std::uint32_t p : regions[r]) {
+          area += point_area[p];
+          lo = std::min(lo, f[p]);
+          hi = std::max(hi, f[p]);
+        }
+        std::sort(regions[r].begin(), regions[r].end());
+        const std::uint32_t t = (area < small_area || hi - lo < skinny_height)
+                                    ? w.bestNeighbour(graph, regions[r], s)
+                                    : kNone;
+        if (t != kNone) {
+          for (std::uint32_t p : regions[r])
+            w.addPoint(t, p, f, point_area[p]);
         } else {
-          w.addPoint(best, p, f, point_area[p]);
-          changed = true;
-        }
-      }
-      pending.swap(rest);
-    }
-    // Points that never touch a child: the largest child takes them; step 3 re-tests them.
-    std::uint32_t largest = kids.front();
-    for (std::uint32_t kid : kids)
-      if (w.area[kid] > w.area[largest])
-        largest = kid;
-    for (std::uint32_t p : pending)
-      w.addPoint(largest, p, f, point_area[p]);
-    w.replaceChild(w.parent[s], s, kids);
-    if (w.parent[s] == kNone)
-      for (std::uint32_t kid : kids)
-        w.parent[kid] = kNone;
-    w.children[s].clear();
-    w.parent[s] = kNone;
-    w.alive[s] = false;
-  }
-
-  // 2. Merge-down: a skinny supernode, or a small one not merged up, that terminates at a
-  //    saddle joins the supernode created there.
-  for (std::uint32_t s = 0; s < m; ++s)
-    if (w.alive[s] && w.parent[s] != kNone && (skinny(s) || small(s)))
-      w.mergeInto(s, w.parent[s], f, point_area);
-
-  // 3. Disconnected regions: all but the largest are re-tested.
-  std::vector<std::uint32_t> region(n, kNone);
-  const std::size_t before_regions = w.alive.size();
-  for (std::uint32_t s = 0; s < before_regions; ++s) {
-    if (!w.alive[s] || w.points[s].empty())
-      continue;
-    std::vector<std::vector<std::uint32_t>> regions;
-    std::vector<std::uint32_t> stack;
-    for (std::uint32_t seed : w.points[s]) {
-      if (region[seed] != kNone)
-        continue;
-      const auto r = static_cast<std::uint32_t>(regions.size());
-      regions.emplace_back();
-      region[seed] = r;
-      stack.push_back(seed);
-      while (!stack.empty()) {
-        const std::uint32_t p = stack.back();
-        stack.pop_back();
-        regions[r].push_back(p);
-        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-          const std::uint32_t q = graph.targets[e];
-          if (w.label[q] == s && region[q] == kNone) {
-            region[q] = r;
-            stack.push_back(q);
-          }
+          const std::uint32_t fresh = w.add(regions[r].front(), false, w.parent[s]);
+          for (std::uint32_t p : regions[r])
+            w.addPoint(fresh, p, f, point_area[p]);
         }
       }
     }
-    for (std::uint32_t p : w.points[s])
-      region[p] = kNone;
-    if (regions.size() < 2)
-      continue;
-    std::size_t keep = 0;
-    for (std::size_t r = 1; r < regions.size(); ++r)
-      if (regions[r].size() > regions[keep].size())
-        keep = r;
-    // Rebuild s from the kept region, then place the others.
-    w.points[s].clear();
-    w.area[s] = 0.0;
-    w.fmin[s] = std::numeric_limits<float>::infinity();
-    w.fmax[s] = -std::numeric_limits<float>::infinity();
-    for (std::uint32_t p : regions[keep])
-      w.addPoint(s, p, f, point_area[p]);
-    for (std::size_t r = 0; r < regions.size(); ++r) {
-      if (r == keep)
-        continue;
-      double area = 0.0;
-      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-      for (std::uint32_t p : regions[r]) {
-        area += point_area[p];
-        lo = std::min(lo, f[p]);
-        hi = std::max(hi, f[p]);
-      }
-      std::sort(regions[r].begin(), regions[r].end());
-      const std::uint32_t t = (area < small_area || hi - lo < skinny_height)
-                                  ? w.bestNeighbour(graph, regions[r], s)
-                                  : kNone;
-      if (t != kNone) {
-        for (std::uint32_t p : regions[r])
-          w.addPoint(t, p, f, point_area[p]);
-      } else {
-        const std::uint32_t fresh = w.add(regions[r].front(), false, w.parent[s]);
-        for (std::uint32_t p : regions[r])
-          w.addPoint(fresh, p, f, point_area[p]);
-      }
-    }
+    if (!changed)
+      break;
   }
 
   // 4. A small or skinny supernode with no saddle relation joins its point-wise neighbour.

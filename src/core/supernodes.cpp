@@ -73,8 +73,8 @@ Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
       if (rank[q] > rank[p])
         continue; // not processed: not in M(p)
       const std::uint32_t s = find(sn.label[q]);
-      auto it = std::find_if(counts.begin(), counts.end(),
-                             [s](const auto& c) { return c.first == s; });
+      auto it =
+          std::find_if(counts.begin(), counts.end(), [s](const auto& c) { return c.first == s; });
       if (it == counts.end())
         counts.emplace_back(s, 1);
       else
@@ -101,7 +101,7 @@ Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
       sn.label[p] = steepest; // no rule in the text: follow the gradient
     } else if (kept.size() == 1) {
       sn.label[p] = kept.front(); // step (c)
-    } else { // step (d): p is a saddle
+    } else {                      // step (d): p is a saddle
       std::sort(kept.begin(), kept.end());
       const std::uint32_t s = create(p, true);
       for (std::uint32_t t : kept) {

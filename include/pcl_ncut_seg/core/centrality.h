@@ -12,8 +12,8 @@ namespace pcl_ncut_seg {
 
 /** \brief Output of computeCentrality(). */
 struct Centrality {
-  std::vector<float> f;                ///< per vertex, mean geodesic distance to the samples, eq. (1)
-  std::vector<std::uint32_t> samples;  ///< the farthest-point samples U, in the order chosen
+  std::vector<float> f; ///< per vertex, mean geodesic distance to the samples, eq. (1)
+  std::vector<std::uint32_t> samples;   ///< the farthest-point samples U, in the order chosen
   std::vector<std::uint32_t> component; ///< per vertex, its connected component
   std::size_t num_components = 0;
 };
@@ -31,8 +31,7 @@ struct Centrality {
  * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))
  * \param[in] num_threads  threads for the full searches; 0 = all available
  */
-Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples,
-                             unsigned num_threads);
+Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads);
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
  * Unreachable vertices get +infinity. */

@@ -17,9 +17,9 @@ double normalizedCut(const WeightedGraph& graph, const std::vector<std::uint32_t
 
 /** \brief A bisection of a vertex subset. */
 struct Bisection {
-  bool valid = false;              ///< false: the subset cannot be split
-  double ncut = 0.0;               ///< NCut of the split
-  std::vector<std::uint32_t> v1;   ///< side holding the subset's smallest vertex
+  bool valid = false;            ///< false: the subset cannot be split
+  double ncut = 0.0;             ///< NCut of the split
+  std::vector<std::uint32_t> v1; ///< side holding the subset's smallest vertex
   std::vector<std::uint32_t> v2;
 };
 
@@ -36,9 +36,9 @@ Bisection bisect(const WeightedGraph& graph, std::size_t num_supernodes,
 struct Hierarchy {
   struct Node {
     std::vector<std::uint32_t> vertices; ///< sorted vertex ids of G_s
-    double ncut = 0.0;      ///< NCut of this node's best bisection (if has_split)
-    bool has_split = false; ///< a bisection exists
-    int left = -1, right = -1; ///< children when split (accepted), else -1
+    double ncut = 0.0;                   ///< NCut of this node's best bisection (if has_split)
+    bool has_split = false;              ///< a bisection exists
+    int left = -1, right = -1;           ///< children when split (accepted), else -1
     int parent = -1;
   };
   std::vector<Node> nodes;
@@ -47,9 +47,9 @@ struct Hierarchy {
 
 /** \brief Cut parameters of the hierarchy. */
 struct CutParams {
-  double threshold = 0.1; ///< split while the best NCut <= threshold
-  int num_segments = 0;   ///< > 0: instead split the lowest-NCut leaf until this many leaves
-  int num_splits = 100;   ///< uniform split values tried per bisection
+  double threshold = 0.02; ///< split while the best NCut <= threshold
+  int num_segments = 0;    ///< > 0: instead split the lowest-NCut leaf until this many leaves
+  int num_splits = 100;    ///< uniform split values tried per bisection
 };
 
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,

@@ -25,10 +25,10 @@ struct PhaseTimes {
 };
 
 struct AnalysisParams {
-  std::size_t num_samples = 0;     ///< per component; 0 = ceil(sqrt(n_c))
-  float crossing_fraction = 0.3f;  ///< Sec. 4.2 (b)
+  std::size_t num_samples = 0;    ///< per component; 0 = ceil(sqrt(n_c))
+  float crossing_fraction = 0.3f; ///< Sec. 4.2 (b)
   RefinementParams refinement;
-  unsigned num_threads = 0;        ///< 0 = all available
+  unsigned num_threads = 0; ///< 0 = all available
 };
 
 /** \brief The expensive stage: everything that depends only on the points, k and the
@@ -36,11 +36,11 @@ struct AnalysisParams {
 struct Analysis {
   CsrGraph graph;
   Centrality centrality;
-  std::vector<float> radii;       ///< r(p), Sec. 4.3
-  Supernodes raw_supernodes;      ///< Sec. 4.2, before refinement
-  Supernodes supernodes;          ///< after refinement (Sec. 4.3)
-  FeatureStats stats;             ///< of the refined supernodes
-  Connectivity conn;              ///< eq. (8) over the refined supernodes
+  std::vector<float> radii;  ///< r(p), Sec. 4.3
+  Supernodes raw_supernodes; ///< Sec. 4.2, before refinement
+  Supernodes supernodes;     ///< after refinement (Sec. 4.3)
+  FeatureStats stats;        ///< of the refined supernodes
+  Connectivity conn;         ///< eq. (8) over the refined supernodes
 };
 
 /** \brief Run Secs. 4.1-4.3 on a prepared kNN graph. Times go to times.centrality etc. */
@@ -48,15 +48,15 @@ Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times
 
 /** \brief The cheap stage's result. */
 struct CutResult {
-  WeightedGraph graph;    ///< G_s (Sec. 5.1)
-  Hierarchy hierarchy;    ///< Sec. 5.2
+  WeightedGraph graph;                          ///< G_s (Sec. 5.1)
+  Hierarchy hierarchy;                          ///< Sec. 5.2
   std::vector<std::uint32_t> supernode_segment; ///< per refined supernode, its segment
   std::vector<std::uint32_t> point_segment;     ///< per point, its segment
   std::size_t num_segments = 0;
 };
 
 /** \brief Run Sec. 5 on an analysis. Segments are numbered in order of their smallest point. */
-CutResult cut(const Analysis& analysis, const SimilarityParams& similarity,
-              const CutParams& params, PhaseTimes& times);
+CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, const CutParams& params,
+              PhaseTimes& times);
 
 } // namespace pcl_ncut_seg

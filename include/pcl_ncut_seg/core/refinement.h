@@ -12,7 +12,9 @@
 namespace pcl_ncut_seg {
 
 /** \brief ||p - q||_2 of eq. (3): mixes the centrality difference and the Euclidean length. */
-inline float featureDistance(float df, float d) { return std::sqrt(df * df + d * d); }
+inline float featureDistance(float df, float d) {
+  return std::sqrt(df * df + d * d);
+}
 
 /** \brief r(p) of Sec. 4.3: mean of ||p - q||_2 (eq. 3) over the neighbours N(p). */
 std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f);
