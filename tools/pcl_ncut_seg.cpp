@@ -174,6 +174,19 @@ bool toInt(const std::string& s, long& value) {
   return true;
 }
 
+/** Where the bundled model may be: the source tree, the configured install directory, and
+ * <prefix>/share/pcl_ncut_seg beside this executable's bin/ (for an install to another prefix). */
+std::vector<std::string> bundledDataDirs() {
+  std::vector<std::string> dirs = {PCL_NCUT_SEG_SOURCE_DATA_DIR, PCL_NCUT_SEG_INSTALL_DATA_DIR};
+  std::vector<char> buffer(4096);
+  const ssize_t n = ::readlink("/proc/self/exe", buffer.data(), buffer.size() - 1);
+  if (n > 0) {
+    const std::string exe(buffer.data(), static_cast<std::size_t>(n));
+    dirs.push_back(directoryOf(directoryOf(exe)) + "/share/pcl_ncut_seg");
+  }
+  return dirs;
+}
+
 /** The parsed command line. */
 struct Options {
   std::string input, output;
@@ -277,16 +290,18 @@ bool parseCommandLine(int argc, char** argv, Options& opt) {
 
   if (positional.empty()) {
     opt.bundled = true;
-    for (const std::string dir : {PCL_NCUT_SEG_SOURCE_DATA_DIR, PCL_NCUT_SEG_INSTALL_DATA_DIR}) {
+    const std::vector<std::string> dirs = bundledDataDirs();
+    std::string looked;
+    for (const std::string& dir : dirs) {
       const std::string candidate = dir + "/" + kBundledModel;
       if (isReadableFile(candidate)) {
         opt.input = candidate;
         break;
       }
+      looked += (looked.empty() ? "" : ", ") + dir;
     }
     if (opt.input.empty()) {
-      fail(std::string("the bundled model ") + kBundledModel + " was found neither in " +
-           PCL_NCUT_SEG_SOURCE_DATA_DIR + " nor in " + PCL_NCUT_SEG_INSTALL_DATA_DIR +
+      fail(std::string("the bundled model ") + kBundledModel + " is in none of " + looked +
            "; give an input file");
       return false;
     }
