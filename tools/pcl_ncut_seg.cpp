@@ -332,7 +332,8 @@ private:
   VERBOSITY_LEVEL level_;
 };
 
-bool hasXyz(const std::string& path, const pcl::PCLPointCloud2& blob) {
+/** True when the cloud has x, y, z fields and at least one point; else one error line. */
+bool hasXyzAndPoints(const std::string& path, const pcl::PCLPointCloud2& blob) {
   for (const char* name : {"x", "y", "z"}) {
     const auto it = std::find_if(blob.fields.begin(), blob.fields.end(),
                                  [name](const pcl::PCLPointField& f) { return f.name == name; });
@@ -340,6 +341,10 @@ bool hasXyz(const std::string& path, const pcl::PCLPointCloud2& blob) {
       fail("'" + path + "' has no " + name + " field: need points with x, y and z");
       return false;
     }
+  }
+  if (static_cast<std::uint64_t>(blob.width) * blob.height == 0) {
+    fail("'" + path + "' contains no points");
+    return false;
   }
   return true;
 }
@@ -381,12 +386,8 @@ bool loadCloud(const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud) {
       fail(invalid);
       return false;
     }
-    if (!hasXyz(path, blob))
+    if (!hasXyzAndPoints(path, blob))
       return false;
-    if (static_cast<std::uint64_t>(blob.width) * blob.height == 0) {
-      fail("'" + path + "' contains no points");
-      return false;
-    }
   }
   int status = -1;
   {
@@ -401,12 +402,8 @@ bool loadCloud(const std::string& path, pcl::PointCloud<pcl::PointXYZ>& cloud) {
     fail(invalid);
     return false;
   }
-  if (!hasXyz(path, blob))
+  if (!hasXyzAndPoints(path, blob))
     return false;
-  if (static_cast<std::uint64_t>(blob.width) * blob.height == 0) {
-    fail("'" + path + "' contains no points");
-    return false;
-  }
   {
     SilencePcl silence; // fromPCLPointCloud2 warns about fields it does not need
     pcl::fromPCLPointCloud2(blob, cloud);

@@ -21,8 +21,7 @@ pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::~SupernodeNCutSegmentation() = default;
 
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::invalidate() {
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::invalidate() {
   analysis_.reset();
   point_index_.clear();
   result_ = pcl_ncut_seg::CutResult();
@@ -137,20 +136,17 @@ void pcl::SupernodeNCutSegmentation<PointT>::setHeightFraction(float fraction) {
   height_fraction_ = fraction;
 }
 
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setBeta(double beta) {
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::setBeta(double beta) {
   if (ncut_detail::checkPositive("setBeta", beta, similarity_.beta))
     similarity_.beta = beta;
 }
 
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setAlpha1(double alpha1) {
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::setAlpha1(double alpha1) {
   if (ncut_detail::checkPositive("setAlpha1", alpha1, similarity_.alpha1))
     similarity_.alpha1 = alpha1;
 }
 
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setAlpha2(double alpha2) {
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::setAlpha2(double alpha2) {
   if (ncut_detail::checkPositive("setAlpha2", alpha2, similarity_.alpha2))
     similarity_.alpha2 = alpha2;
 }
@@ -203,8 +199,7 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfThreads(unsigned threads
   num_threads_ = threads; // output does not depend on it, so nothing to invalidate
 }
 
-template <typename PointT>
-bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
+template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
   const auto start = std::chrono::steady_clock::now();
   // Valid points: in range, finite, each once; sorted so that graph order is cloud order.
   const std::size_t cloud_size = input_->size();
@@ -338,36 +333,59 @@ void pcl::SupernodeNCutSegmentation<PointT>::segmentColor(std::size_t i, std::ui
   const double p = v * (1 - s), q = v * (1 - s * frac), t = v * (1 - s * (1 - frac));
   double rgb[3];
   switch (sector) {
-  case 0: rgb[0] = v, rgb[1] = t, rgb[2] = p; break;
-  case 1: rgb[0] = q, rgb[1] = v, rgb[2] = p; break;
-  case 2: rgb[0] = p, rgb[1] = v, rgb[2] = t; break;
-  case 3: rgb[0] = p, rgb[1] = q, rgb[2] = v; break;
-  case 4: rgb[0] = t, rgb[1] = p, rgb[2] = v; break;
-  default: rgb[0] = v, rgb[1] = p, rgb[2] = q; break;
+  case 0:
+    rgb[0] = v, rgb[1] = t, rgb[2] = p;
+    break;
+  case 1:
+    rgb[0] = q, rgb[1] = v, rgb[2] = p;
+    break;
+  case 2:
+    rgb[0] = p, rgb[1] = v, rgb[2] = t;
+    break;
+  case 3:
+    rgb[0] = p, rgb[1] = q, rgb[2] = v;
+    break;
+  case 4:
+    rgb[0] = t, rgb[1] = p, rgb[2] = v;
+    break;
+  default:
+    rgb[0] = v, rgb[1] = p, rgb[2] = q;
+    break;
   }
   r = static_cast<std::uint8_t>(std::lround(rgb[0] * 255));
   g = static_cast<std::uint8_t>(std::lround(rgb[1] * 255));
   b = static_cast<std::uint8_t>(std::lround(rgb[2] * 255));
 }
 
+namespace pcl {
+namespace ncut_detail {
+/// A copy of the input's x, y, z and layout into another point type.
+template <typename OutT, typename InT>
+typename pcl::PointCloud<OutT>::Ptr copyXyz(const pcl::PointCloud<InT>& in) {
+  typename pcl::PointCloud<OutT>::Ptr out(new pcl::PointCloud<OutT>);
+  out->header = in.header;
+  out->resize(in.size());
+  out->width = in.width;
+  out->height = in.height;
+  out->is_dense = in.is_dense;
+  for (std::size_t i = 0; i < in.size(); ++i) {
+    (*out)[i].x = in[i].x;
+    (*out)[i].y = in[i].y;
+    (*out)[i].z = in[i].z;
+  }
+  return out;
+}
+} // namespace ncut_detail
+} // namespace pcl
+
 template <typename PointT>
 pcl::PointCloud<pcl::PointXYZRGB>::Ptr
 pcl::SupernodeNCutSegmentation<PointT>::getColoredCloud() const {
-  pcl::PointCloud<pcl::PointXYZRGB>::Ptr out(new pcl::PointCloud<pcl::PointXYZRGB>);
   if (!have_result_ || !input_)
-    return out;
-  out->header = input_->header;
-  out->width = input_->width;
-  out->height = input_->height;
-  out->is_dense = input_->is_dense;
-  out->resize(input_->size());
-  for (std::size_t i = 0; i < input_->size(); ++i) {
-    auto& q = (*out)[i];
-    q.x = (*input_)[i].x;
-    q.y = (*input_)[i].y;
-    q.z = (*input_)[i].z;
-    q.r = q.g = q.b = 0;
-  }
+    return pcl::PointCloud<pcl::PointXYZRGB>::Ptr(new pcl::PointCloud<pcl::PointXYZRGB>);
+  auto out = ncut_detail::copyXyz<pcl::PointXYZRGB>(*input_);
+  for (auto& q : *out)
+    q.r = q.g = q.b = 0; // points in no segment are black
   for (std::size_t i = 0; i < point_index_.size(); ++i) {
     auto& q = (*out)[point_index_[i]];
     segmentColor(result_.point_segment[i], q.r, q.g, q.b);
@@ -378,21 +396,11 @@ pcl::SupernodeNCutSegmentation<PointT>::getColoredCloud() const {
 template <typename PointT>
 pcl::PointCloud<pcl::PointXYZL>::Ptr
 pcl::SupernodeNCutSegmentation<PointT>::getLabeledCloud() const {
-  pcl::PointCloud<pcl::PointXYZL>::Ptr out(new pcl::PointCloud<pcl::PointXYZL>);
   if (!have_result_ || !input_)
-    return out;
-  out->header = input_->header;
-  out->width = input_->width;
-  out->height = input_->height;
-  out->is_dense = input_->is_dense;
-  out->resize(input_->size());
-  for (std::size_t i = 0; i < input_->size(); ++i) {
-    auto& q = (*out)[i];
-    q.x = (*input_)[i].x;
-    q.y = (*input_)[i].y;
-    q.z = (*input_)[i].z;
-    q.label = 0;
-  }
+    return pcl::PointCloud<pcl::PointXYZL>::Ptr(new pcl::PointCloud<pcl::PointXYZL>);
+  auto out = ncut_detail::copyXyz<pcl::PointXYZL>(*input_);
+  for (auto& q : *out)
+    q.label = 0; // points in no segment
   for (std::size_t i = 0; i < point_index_.size(); ++i)
     (*out)[point_index_[i]].label = result_.point_segment[i] + 1;
   return out;
@@ -443,5 +451,5 @@ std::size_t pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSupernodes(bool r
   return refined ? analysis_->supernodes.size() : analysis_->raw_supernodes.size();
 }
 
-#define PCL_INSTANTIATE_SupernodeNCutSegmentation(T)                                            \
+#define PCL_INSTANTIATE_SupernodeNCutSegmentation(T)                                               \
   template class PCL_EXPORTS pcl::SupernodeNCutSegmentation<T>;
