@@ -85,12 +85,14 @@ struct Work {
     if (parent[s] == t) {
       replaceChild(t, s, children[s]);
     } else {
-      replaceChild(parent[s], s, {});
+      // s leaves its parent; if t was one of s's children, t takes s's place there.
+      std::vector<std::uint32_t> moved, heir;
       for (std::uint32_t c : children[s])
-        if (c != t)
-          replaceChild(t, kNone, {c});
-      auto& tc = children[t];
-      tc.erase(std::remove(tc.begin(), tc.end(), s), tc.end());
+        (c == t ? heir : moved).push_back(c);
+      if (!heir.empty())
+        parent[t] = kNone;
+      replaceChild(parent[s], s, heir);
+      replaceChild(t, s, moved); // s's other children now terminate at t
     }
     children[s].clear();
     parent[s] = kNone;
