@@ -155,6 +155,50 @@ bool readOff(const std::string& path, TriangleMesh& mesh, std::string* error) {
   return true;
 }
 
+bool readObj(const std::string& path, TriangleMesh& mesh, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return fail(error, path, 0, "cannot open file");
+  TriangleMesh result;
+  std::size_t line_no = 0;
+  std::vector<std::string> tokens;
+  std::vector<std::uint32_t> polygon;
+  std::size_t num_faces = 0;
+  while (nextTokens(in, tokens, line_no)) {
+    if (tokens[0] == "v") {
+      float xyz[3];
+      if (tokens.size() < 4 || !parseNumber(tokens[1], xyz[0]) ||
+          !parseNumber(tokens[2], xyz[1]) || !parseNumber(tokens[3], xyz[2]))
+        return fail(error, path, line_no, "bad vertex");
+      result.vertices.insert(result.vertices.end(), xyz, xyz + 3);
+    } else if (tokens[0] == "f") {
+      if (tokens.size() < 4)
+        return fail(error, path, line_no, "a face needs at least three vertices");
+      const long long count = static_cast<long long>(result.numVertices());
+      polygon.clear();
+      for (std::size_t i = 1; i < tokens.size(); ++i) {
+        long long index = 0; // the vertex before any '/'
+        if (!parseNumber(tokens[i].substr(0, tokens[i].find('/')), index) || index == 0)
+          return fail(error, path, line_no, "bad vertex index in face");
+        index = index > 0 ? index - 1 : count + index; // negative: relative to the end
+        if (index < 0 || index >= count)
+          return fail(error, path, line_no, "vertex index out of range in face");
+        polygon.push_back(static_cast<std::uint32_t>(index));
+      }
+      for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+        result.faces.insert(result.faces.end(), {polygon[0], polygon[i], polygon[i + 1]});
+        result.original_face.push_back(static_cast<std::uint32_t>(num_faces));
+      }
+      ++num_faces;
+    }
+  }
+  if (result.vertices.empty() && num_faces == 0)
+    return fail(error, path, 0, "not an OBJ file (no vertices)");
+  result.num_original_faces = num_faces;
+  mesh = std::move(result);
+  return true;
+}
+
 std::vector<double> faceAreas(const TriangleMesh& mesh) {
   std::vector<double> areas(mesh.num_original_faces, 0.0);
   const float* v = mesh.vertices.data();

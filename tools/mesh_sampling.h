@@ -28,6 +28,12 @@ struct TriangleMesh {
  * \return false with a one-line reason in *error (if given) on any malformed input. */
 bool readOff(const std::string& path, TriangleMesh& mesh, std::string* error = nullptr);
 
+/** \brief Read a Wavefront OBJ file's geometry: "v x y z [w]" and "f a b c ..." with
+ * "a/t/n" references and negative (relative) indices; other statements (normals, texture
+ * coordinates, groups, materials, lines) are ignored.
+ * \return false with a one-line reason in *error (if given) on any malformed input. */
+bool readObj(const std::string& path, TriangleMesh& mesh, std::string* error = nullptr);
+
 /** \brief Area of each original face (the sum of its triangles). */
 std::vector<double> faceAreas(const TriangleMesh& mesh);
 

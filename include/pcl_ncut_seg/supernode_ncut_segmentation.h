@@ -16,6 +16,7 @@
 
 #include <pcl_ncut_seg/core/pipeline.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -136,6 +137,14 @@ public:
   void setNumberOfThreads(unsigned threads);
   unsigned getNumberOfThreads() const { return num_threads_; }
 
+  /** \brief Called during extract() with a phase of Table 1 ("kNN", "Cen", "Snod", "LRef",
+   * "HSeg") and 0 at its start, 1 at its end, and the fraction done in between where known
+   * (the centrality). Always from the thread that called extract(); it must not throw.
+   * An empty function (default) turns reports off. */
+  void setProgressCallback(std::function<void(const char* phase, double fraction)> progress) {
+    progress_ = std::move(progress);
+  }
+
   /** \brief Segment the input. Segments are ordered by their smallest point index; every
    * finite input point (within the indices) is in exactly one. On bad input, prints a
    * PCL_ERROR and returns no segments. */
@@ -191,6 +200,7 @@ protected:
   unsigned num_threads_ = 0;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;
+  std::function<void(const char*, double)> progress_;
 
   std::shared_ptr<pcl_ncut_seg::Analysis> analysis_; ///< expensive stage, or null
   std::vector<int> point_index_;      ///< graph vertex -> input index

@@ -5,6 +5,7 @@
 #include <boost/graph/dijkstra_shortest_paths_no_color_map.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -75,7 +76,8 @@ std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source
   return dist;
 }
 
-Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads) {
+Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
+                             const ProgressFn& progress) {
   const std::size_t n = graph.numVertices();
   Centrality out;
   out.f.assign(n, 0.0f);
@@ -155,6 +157,9 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
 #endif
   threads = std::max(1, std::min<int>(threads, static_cast<int>(tasks.size())));
   std::vector<std::vector<std::int64_t>> partial(threads);
+  std::atomic<std::size_t> done{0};
+  if (progress)
+    progress(0.0);
 #pragma omp parallel num_threads(threads)
   {
     int t = 0;
@@ -174,8 +179,14 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
         acc[v] += std::llround(static_cast<double>(d[v]) * inv);
         d[v] = kInf;
       }
+      // Only the calling thread (the team's master) reports, so the callback needs no lock.
+      const std::size_t finished = done.fetch_add(1) + 1;
+      if (progress && t == 0)
+        progress(static_cast<double>(finished) / static_cast<double>(tasks.size()));
     }
   }
+  if (progress)
+    progress(1.0);
   for (std::uint32_t v = 0; v < n; ++v) {
     std::int64_t sum = 0;
     for (const auto& acc : partial)

@@ -21,16 +21,30 @@ private:
 Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times) {
   Analysis a;
   a.graph = std::move(graph);
+  const auto report = [&params](const char* phase, double fraction) {
+    if (params.progress)
+      params.progress(phase, fraction);
+  };
+  ProgressFn centrality_progress;
+  if (params.progress)
+    centrality_progress = [&params](double fraction) { params.progress("Cen", fraction); };
   Stopwatch clock;
-  a.centrality = computeCentrality(a.graph, params.num_samples, params.num_threads);
+  report("Cen", 0.0);
+  a.centrality =
+      computeCentrality(a.graph, params.num_samples, params.num_threads, centrality_progress);
+  report("Cen", 1.0);
   times.centrality = clock.lap();
+  report("Snod", 0.0);
   a.raw_supernodes = extractSupernodes(a.graph, a.centrality.f, params.crossing_fraction);
+  report("Snod", 1.0);
   times.supernodes = clock.lap();
+  report("LRef", 0.0);
   a.radii = pointRadii(a.graph, a.centrality.f);
   a.supernodes =
       refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+  report("LRef", 1.0);
   times.refinement = clock.lap();
   return a;
 }

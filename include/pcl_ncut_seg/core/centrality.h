@@ -6,9 +6,13 @@
 #include <pcl_ncut_seg/core/csr_graph.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_ncut_seg {
+
+/** \brief Progress report: the fraction in [0, 1] of the work done. */
+using ProgressFn = std::function<void(double)>;
 
 /** \brief Output of computeCentrality(). */
 struct Centrality {
@@ -30,8 +34,11 @@ struct Centrality {
  * \param[in] graph        the kNN graph
  * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))
  * \param[in] num_threads  threads for the full searches; 0 = all available
+ * \param[in] progress     if set, called from the calling thread only with the fraction of the
+ *                         full searches done (it must not throw)
  */
-Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads);
+Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
+                             const ProgressFn& progress = {});
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
  * Unreachable vertices get +infinity. */

@@ -14,6 +14,7 @@
 #include <pcl_ncut_seg/core/supernodes.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -29,6 +30,9 @@ struct AnalysisParams {
   float crossing_fraction = 0.3f; ///< Sec. 4.2 (b)
   RefinementParams refinement;
   unsigned num_threads = 0; ///< 0 = all available
+  /// If set, called with a phase ("Cen", "Snod", "LRef") and 0 at its start, 1 at its end,
+  /// and with the fraction done in between where known (from the calling thread only).
+  std::function<void(const char* phase, double fraction)> progress;
 };
 
 /** \brief The expensive stage: everything that depends only on the points, k and the

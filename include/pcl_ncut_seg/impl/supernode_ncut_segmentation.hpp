@@ -249,6 +249,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     xyz[3 * i + 2] = static_cast<float>(p.z - c[2]);
   }
 
+  if (progress_)
+    progress_("kNN", 0.0);
   // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points).
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(k_), n - 1);
   if (k < static_cast<std::size_t>(k_))
@@ -286,6 +288,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (progress_)
+    progress_("kNN", 1.0);
 
   pcl_ncut_seg::AnalysisParams params;
   params.num_samples = static_cast<std::size_t>(num_samples_);
@@ -293,6 +297,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   params.refinement.area_fraction = area_fraction_;
   params.refinement.height_fraction = height_fraction_;
   params.num_threads = num_threads_;
+  params.progress = progress_;
   analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
       pcl_ncut_seg::analyze(std::move(graph), params, times_));
   point_index_ = std::move(valid);
@@ -312,7 +317,11 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
     deinitCompute();
     return;
   }
+  if (progress_)
+    progress_("HSeg", 0.0);
   result_ = pcl_ncut_seg::cut(*analysis_, similarity_, cut_, times_);
+  if (progress_)
+    progress_("HSeg", 1.0);
   segments.resize(result_.num_segments);
   for (std::size_t i = 0; i < point_index_.size(); ++i)
     segments[result_.point_segment[i]].indices.push_back(point_index_[i]);

@@ -1,0 +1,497 @@
+/*
+ * pcl_ncut_seg_viewer: look at a segmentation by pcl::SupernodeNCutSegmentation and at the
+ * stages that lead to it (Yamazaki et al., "Segmenting Point-sampled Surfaces"): the segments,
+ * the centrality with its local maxima and saddles (the paper's Fig. 1), the supernodes before
+ * and after local refinement (Figs. 3 and 5), and the hierarchy one level coarser or finer.
+ *
+ *   pcl_ncut_seg_viewer [input] [options]
+ *   pcl_ncut_seg_viewer [input] -screenshot out.png [-view name|all] [-size WxH]
+ */
+#include "tool_common.h"
+
+#include <pcl/console/print.h>
+#include <pcl/visualization/pcl_visualizer.h>
+
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkRenderWindow.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+using namespace pcl_ncut_seg::tool;
+
+namespace {
+
+using ColorCloud = pcl::PointCloud<pcl::PointXYZRGB>;
+
+/** What can be shown. Coarser and finer are the segments of a cut with one segment less or
+ * more than the first cut, from the same expensive stage. */
+enum class View { Segments, Centrality, Supernodes, Refined, Coarser, Finer };
+
+const struct {
+  View view;
+  const char* name;
+} kViews[] = {{View::Segments, "segments"},     {View::Centrality, "centrality"},
+              {View::Supernodes, "supernodes"}, {View::Refined, "refined"},
+              {View::Coarser, "coarser"},       {View::Finer, "finer"}};
+
+const char* viewName(View view) {
+  for (const auto& v : kViews)
+    if (v.view == view)
+      return v.name;
+  return "";
+}
+
+// Colours of the centrality markers: not on the heat map's blue-to-red ramp.
+constexpr std::uint8_t kMaximumRgb[3] = {255, 255, 255}; // local maxima: white
+constexpr std::uint8_t kSaddleRgb[3] = {255, 0, 255};    // saddles: magenta
+constexpr double kBackground = 0.12;                     // dark grey
+
+std::vector<Flag> viewerFlags() {
+  std::vector<Flag> table = algorithmFlags();
+  for (const Flag& f : meshFlags())
+    table.push_back(f);
+  table.push_back(textFlag("-screenshot", "FILE.png",
+                           "render off-screen to FILE.png and exit (needs an X display: run "
+                           "under xvfb-run -a)"));
+  table.push_back(textFlag("-view", "NAME",
+                           "the view of -screenshot: segments, centrality, supernodes, refined, "
+                           "coarser, finer, or all (FILE_<view>.png each)",
+                           "segments"));
+  table.push_back(textFlag("-size", "WxH", "window or screenshot size in pixels", "640x480"));
+  table.push_back(intFlag("-point_size", "P", "point size in pixels, >= 1", "3", 1, 50));
+  for (const Flag& f : commonFlags())
+    table.push_back(f);
+  return table;
+}
+
+void printHelp(const char* name) {
+  print_info("Syntax is: %s [input] <options>\n", name);
+  print_info("Shows the segmentation of a point-sampled surface (Yamazaki et al., \"Segmenting "
+             "Point-sampled Surfaces\")\nand its stages. The input is a point cloud (.pcd, "
+             ".ply) or a mesh (.off, .obj, .ply with faces);\nwith no input, the bundled model "
+             "hand.pcd. Press h in the window for the keys.\n");
+  print_info("  where options are:\n");
+  printFlags(viewerFlags());
+}
+
+const char* const kKeys[] = {
+    "1       segments, in distinct colours",
+    "2       centrality (heat map, blue = low, red = high), local maxima (white), saddles "
+    "(magenta)",
+    "3       supernodes before local refinement",
+    "4       supernodes after local refinement",
+    "Up / ]  one level finer: a cut with one more segment",
+    "Down / [  one level coarser: a cut with one segment less",
+    "h       show or hide these keys (PCL's own keys are printed on the console)",
+    "q       quit"};
+
+/** The segmenter and everything a view needs. */
+class Scene {
+public:
+  Scene(Segmenter& seg, const Input& input) : seg_(seg), input_(input) {}
+
+  /** Run the first cut; false on failure. */
+  bool segment() {
+    std::vector<pcl::PointIndices> segments;
+    seg_.extract(segments);
+    if (segments.empty())
+      return false;
+    first_segments_ = segments.size();
+    current_segments_ = segments.size();
+    first_threshold_ = seg_.getThreshold();
+    by_number_ = seg_.getNumberOfSegments() > 0;
+    colored_ = seg_.getColoredCloud();
+    return true;
+  }
+
+  /** Cut again with this many segments (the cheap stage only); false if the hierarchy cannot
+   * give that many. */
+  bool cutInto(std::size_t segments) {
+    if (segments < 1)
+      return false;
+    const pcl_ncut_seg::Analysis* before = seg_.getAnalysis();
+    seg_.setNumberOfSegments(static_cast<int>(segments));
+    std::vector<pcl::PointIndices> result;
+    seg_.extract(result);
+    reused_ = seg_.getAnalysis() == before;
+    if (result.size() != segments) {
+      // Not that many parts: go back to the current cut.
+      seg_.setNumberOfSegments(static_cast<int>(current_segments_));
+      seg_.extract(result);
+      colored_ = seg_.getColoredCloud();
+      return false;
+    }
+    current_segments_ = segments;
+    colored_ = seg_.getColoredCloud();
+    return true;
+  }
+
+  std::size_t firstSegments() const { return first_segments_; }
+  std::size_t currentSegments() const { return current_segments_; }
+
+  /** The points in the colours of a view, and the title that says what is shown. */
+  ColorCloud::Ptr colours(View view, std::string& title) const {
+    std::ostringstream t;
+    ColorCloud::Ptr out(new ColorCloud(*colored_));
+    if (view == View::Segments || view == View::Coarser || view == View::Finer) {
+      t << "Segments: t = " << current_segments_;
+      if (current_segments_ == first_segments_ && !by_number_)
+        t << " (NCut threshold " << first_threshold_ << ")";
+      else if (current_segments_ != first_segments_)
+        t << " (hierarchy, " << (current_segments_ > first_segments_ ? "finer" : "coarser")
+          << " than the first cut's " << first_segments_ << "; expensive stage "
+          << (reused_ ? "reused" : "recomputed") << ")";
+    } else if (view == View::Centrality) {
+      const std::vector<float> f = seg_.getCentrality();
+      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+      for (float v : f)
+        if (std::isfinite(v)) {
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+      for (std::size_t i = 0; i < out->size(); ++i)
+        heat(std::isfinite(f[i]) && hi > lo ? (f[i] - lo) / (hi - lo) : 0.0f, (*out)[i]);
+      t << "Centrality f (blue low, red high): " << seg_.getLocalMaxima().size()
+        << " local maxima (white), " << seg_.getSaddles().size() << " saddles (magenta)";
+    } else {
+      const bool refined = view == View::Refined;
+      const std::vector<int> label = seg_.getSupernodeLabels(refined);
+      for (std::size_t i = 0; i < out->size(); ++i) {
+        auto& p = (*out)[i];
+        p.r = p.g = p.b = 0;
+        if (label[i] >= 0)
+          Segmenter::segmentColor(static_cast<std::size_t>(label[i]), p.r, p.g, p.b);
+      }
+      t << "Supernodes " << (refined ? "after" : "before") << " local refinement: "
+        << (refined ? "l = " : "m = ") << seg_.getNumberOfSupernodes(refined);
+    }
+    title = t.str();
+    return out;
+  }
+
+  /** The points at the given input indices, in one colour. */
+  ColorCloud::Ptr markers(const std::vector<int>& indices, const std::uint8_t rgb[3]) const {
+    ColorCloud::Ptr out(new ColorCloud);
+    for (int i : indices) {
+      pcl::PointXYZRGB p = (*colored_)[static_cast<std::size_t>(i)];
+      p.r = rgb[0];
+      p.g = rgb[1];
+      p.b = rgb[2];
+      out->push_back(p);
+    }
+    return out;
+  }
+  std::vector<int> localMaxima() const { return seg_.getLocalMaxima(); }
+  std::vector<int> saddles() const { return seg_.getSaddles(); }
+
+private:
+  /** Blue (0) through cyan, green, yellow to red (1). */
+  static void heat(float x, pcl::PointXYZRGB& p) {
+    const float h = (1.0f - std::clamp(x, 0.0f, 1.0f)) * 4.0f; // 0 red .. 4 blue
+    const int sector = std::min(static_cast<int>(h), 3);
+    const float f = h - static_cast<float>(sector);
+    float r = 0, g = 0, b = 0;
+    switch (sector) {
+    case 0: r = 1, g = f; break;         // red -> yellow
+    case 1: r = 1 - f, g = 1; break;     // yellow -> green
+    case 2: g = 1, b = f; break;         // green -> cyan
+    default: g = 1 - f, b = 1; break;    // cyan -> blue
+    }
+    p.r = static_cast<std::uint8_t>(std::lround(r * 255));
+    p.g = static_cast<std::uint8_t>(std::lround(g * 255));
+    p.b = static_cast<std::uint8_t>(std::lround(b * 255));
+  }
+
+  Segmenter& seg_;
+  const Input& input_;
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr colored_;
+  std::size_t first_segments_ = 0, current_segments_ = 0;
+  double first_threshold_ = 0;
+  bool by_number_ = false;
+  bool reused_ = true;
+};
+
+/** Draws a view into a PCLVisualizer: the points, the markers, the overlay text. */
+class Drawer {
+public:
+  Drawer(pcl::visualization::PCLVisualizer& viewer, Scene& scene, int point_size, int width,
+         int height)
+      : viewer_(viewer), scene_(scene), point_size_(point_size), width_(width), height_(height) {}
+
+  void show(View view) {
+    view_ = view;
+    std::string title;
+    ColorCloud::Ptr cloud = scene_.colours(view, title);
+    pcl::visualization::PointCloudColorHandlerRGBField<pcl::PointXYZRGB> rgb(cloud);
+    if (!viewer_.updatePointCloud<pcl::PointXYZRGB>(cloud, rgb, "points")) {
+      viewer_.addPointCloud<pcl::PointXYZRGB>(cloud, rgb, "points");
+    }
+    viewer_.setPointCloudRenderingProperties(pcl::visualization::PCL_VISUALIZER_POINT_SIZE,
+                                             point_size_, "points");
+    for (const char* id : {"maxima", "saddles"})
+      viewer_.removePointCloud(id);
+    if (view == View::Centrality) {
+      addMarkers(scene_.markers(scene_.saddles(), kSaddleRgb), "saddles");
+      addMarkers(scene_.markers(scene_.localMaxima(), kMaximumRgb), "maxima");
+    }
+    const int font = std::max(10, height_ / 34);
+    setText(title, 10, height_ - font - 10, font, "title");
+    setText(keys_shown_ ? keyList() : std::string("h: keys"), 10, 10, font * 4 / 5, "keys");
+  }
+
+  void toggleKeys() {
+    keys_shown_ = !keys_shown_;
+    show(view_);
+  }
+  View view() const { return view_; }
+
+private:
+  void addMarkers(const ColorCloud::Ptr& cloud, const std::string& id) {
+    if (cloud->empty())
+      return;
+    pcl::visualization::PointCloudColorHandlerRGBField<pcl::PointXYZRGB> rgb(cloud);
+    viewer_.addPointCloud<pcl::PointXYZRGB>(cloud, rgb, id);
+    viewer_.setPointCloudRenderingProperties(pcl::visualization::PCL_VISUALIZER_POINT_SIZE,
+                                             point_size_ * 3, id);
+  }
+
+  void setText(const std::string& text, int x, int y, int font, const std::string& id) {
+    if (!viewer_.updateText(text, x, y, font, 1.0, 1.0, 1.0, id))
+      viewer_.addText(text, x, y, font, 1.0, 1.0, 1.0, id);
+  }
+
+  static std::string keyList() {
+    std::string text;
+    for (const char* line : kKeys)
+      text = line + (text.empty() ? "" : "\n" + text); // addText stacks lines upwards
+    return text;
+  }
+
+  pcl::visualization::PCLVisualizer& viewer_;
+  Scene& scene_;
+  int point_size_, width_, height_;
+  View view_ = View::Segments;
+  bool keys_shown_ = false;
+};
+
+/** Look along the cloud's direction of least extent (its largest silhouette), with the
+ * direction of middle extent up, so that the widest extent runs across the window. */
+void placeCamera(pcl::visualization::PCLVisualizer& viewer, const pcl::PointCloud<pcl::PointXYZ>& cloud) {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (const auto& p : cloud)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+      mean += p.getVector3fMap().cast<double>();
+      ++n;
+    }
+  if (n == 0)
+    return;
+  mean /= static_cast<double>(n);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : cloud)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+      const Eigen::Vector3d d = p.getVector3fMap().cast<double>() - mean;
+      cov += d * d.transpose();
+    }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // eigenvalues ascending
+  const Eigen::Vector3d view = eig.eigenvectors().col(0), up = eig.eigenvectors().col(1);
+  const double extent = std::sqrt(std::max(eig.eigenvalues()(2) / static_cast<double>(n), 1e-12));
+  const Eigen::Vector3d eye = mean + view * 10.0 * extent;
+  viewer.setCameraPosition(eye.x(), eye.y(), eye.z(), mean.x(), mean.y(), mean.z(), up.x(),
+                           up.y(), up.z());
+  viewer.resetCamera(); // fit the cloud, keeping the direction
+}
+
+bool parseSize(const std::string& text, int& width, int& height) {
+  char x = 0;
+  std::istringstream in(text);
+  if (!(in >> width >> x >> height) || x != 'x' || !in.eof() || width < 16 || height < 16 ||
+      width > 8192 || height > 8192) {
+    fail("bad value '" + text + "' for -size: expected WxH, e.g. 640x480");
+    return false;
+  }
+  return true;
+}
+
+/** Render the window and write it as a PNG, in one step (no partial file on failure). */
+bool writeScreenshot(pcl::visualization::PCLVisualizer& viewer, const std::string& path) {
+  AtomicFile file;
+  if (!file.open(path))
+    return false;
+  vtkRenderWindow* window = viewer.getRenderWindow();
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(file.temporaryPath().c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+  if (writer->GetErrorCode() != 0) {
+    fail("cannot write '" + path + "'");
+    return false;
+  }
+  return file.commit();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  const std::vector<Flag> table = viewerFlags();
+  Flags flags;
+  if (!parseFlags(argc, argv, table, flags))
+    return 1;
+  if (flags.has("-h")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  const bool quiet = flags.has("-quiet");
+  if (quiet)
+    setVerbosityLevel(L_WARN);
+  if (flags.files.size() > 1) {
+    fail("too many file arguments: expected one input, got '" + flags.files[1] + "' as a second");
+    return 1;
+  }
+  const bool screenshot = flags.has("-screenshot");
+  if (flags.has("-view") && !screenshot) {
+    fail("-view chooses the view of -screenshot; in the window, press h for the keys");
+    return 1;
+  }
+  std::vector<View> views;
+  const std::string view_name = flags.has("-view") ? flags.text("-view") : "segments";
+  for (const auto& v : kViews)
+    if (view_name == "all" || view_name == v.name)
+      views.push_back(v.view);
+  if (views.empty()) {
+    fail("unknown view '" + view_name +
+         "' for -view: expected segments, centrality, supernodes, refined, coarser, finer or all");
+    return 1;
+  }
+  std::string shot;
+  if (screenshot) {
+    shot = flags.text("-screenshot");
+    if (extension(shot) != ".png") {
+      fail("screenshot '" + shot + "' must be a .png file");
+      return 1;
+    }
+  }
+  int width = 640, height = 480;
+  if (flags.has("-size") && !parseSize(flags.text("-size"), width, height))
+    return 1;
+  const int point_size = flags.has("-point_size") ? static_cast<int>(flags.integer("-point_size")) : 3;
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display) {
+    fail(std::string("no X display (DISPLAY is not set): ") +
+         (screenshot ? "run under xvfb-run -a" : "run on a desktop, or use -screenshot under "
+                                                 "xvfb-run -a"));
+    return 1;
+  }
+  Segmenter seg;
+  if (!applyAlgorithmFlags(flags, seg))
+    return 1;
+
+  const std::string input_path = flags.files.empty() ? findBundledModel() : flags.files[0];
+  if (input_path.empty())
+    return 1;
+  Input input;
+  Scene scene(seg, input);
+  {
+    ProgressBar progress(progressWanted(flags));
+    progress.update("Read", 0.0);
+    if (!loadInput(input_path, flags, input))
+      return 1;
+    progress.update("Read", 1.0);
+    seg.setInputCloud(input.cloud);
+    seg.setProgressCallback(progress.callback());
+    if (!scene.segment()) {
+      fail("segmentation of '" + input_path + "' produced no segments");
+      return 1;
+    }
+    seg.setProgressCallback({});
+  }
+  if (!quiet)
+    print_info("%s: %s, %zu segments\n", input_path.c_str(), input.description.c_str(),
+               scene.firstSegments());
+
+  if (screenshot) {
+    pcl::visualization::PCLVisualizer viewer("pcl_ncut_seg_viewer", false);
+    viewer.getRenderWindow()->SetOffScreenRendering(1);
+    viewer.setSize(width, height);
+    viewer.setBackgroundColor(kBackground, kBackground, kBackground);
+    viewer.setShowFPS(false);
+    Drawer drawer(viewer, scene, point_size, width, height);
+    drawer.show(View::Segments);
+    placeCamera(viewer, *input.cloud);
+    for (View view : views) {
+      const std::string path = views.size() == 1 ? shot
+                                                 : directoryOf(shot) + "/" + stem(shot) + "_" +
+                                                       viewName(view) + ".png";
+      if (view == View::Coarser || view == View::Finer) {
+        const std::size_t want = view == View::Finer ? scene.firstSegments() + 1
+                                                     : scene.firstSegments() - 1;
+        if (!scene.cutInto(want))
+          warn(std::string("no ") + viewName(view) + " cut with " + std::to_string(want) +
+               " segments; showing " + std::to_string(scene.currentSegments()));
+      } else if (scene.currentSegments() != scene.firstSegments()) {
+        scene.cutInto(scene.firstSegments());
+      }
+      drawer.show(view);
+      if (!writeScreenshot(viewer, path))
+        return 1;
+      if (!quiet)
+        print_info("Wrote %s (%s, %zu segments)\n", path.c_str(), viewName(view),
+                   scene.currentSegments());
+    }
+    return 0;
+  }
+
+  pcl::visualization::PCLVisualizer viewer("pcl_ncut_seg_viewer: " + input_path);
+  viewer.setSize(width, height);
+  viewer.setBackgroundColor(kBackground, kBackground, kBackground);
+  Drawer drawer(viewer, scene, point_size, width, height);
+  drawer.show(View::Segments);
+  placeCamera(viewer, *input.cloud);
+  viewer.registerKeyboardCallback([&](const pcl::visualization::KeyboardEvent& event) {
+    if (!event.keyDown())
+      return;
+    const std::string key = event.getKeySym();
+    if (key == "1")
+      drawer.show(View::Segments);
+    else if (key == "2")
+      drawer.show(View::Centrality);
+    else if (key == "3")
+      drawer.show(View::Supernodes);
+    else if (key == "4")
+      drawer.show(View::Refined);
+    else if (key == "Up" || key == "bracketright" || key == "Down" || key == "bracketleft") {
+      const bool finer = key == "Up" || key == "bracketright";
+      const std::size_t t = scene.currentSegments();
+      if (!scene.cutInto(finer ? t + 1 : t - 1))
+        print_warn("No %s cut: the hierarchy has no level with %zu segments.\n",
+                   finer ? "finer" : "coarser", finer ? t + 1 : t - 1);
+      drawer.show(View::Segments);
+    } else if (key == "h" || key == "H") {
+      print_info("pcl_ncut_seg_viewer keys:\n");
+      for (const char* line : kKeys)
+        print_info("  %s\n", line);
+      drawer.toggleKeys();
+    }
+  });
+  viewer.spin();
+  return 0;
+}
