@@ -34,7 +34,7 @@ std::vector<Flag> toolFlags() {
                                      "writing x y z rgb label)"));
   table.push_back(switchFlag("-binary", "write binary PCD files instead of ASCII"));
   table.push_back(textFlag("-split", "PREFIX",
-                           "also write each segment to PREFIX_<label>.pcd (same fields)"));
+                           "also write each segment to PREFIX_<label>.pcd (same fields)", "off"));
   for (const Flag& f : commonFlags())
     table.push_back(f);
   return table;

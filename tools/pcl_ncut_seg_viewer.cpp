@@ -58,6 +58,7 @@ const char* viewName(View view) {
 constexpr std::uint8_t kMaximumRgb[3] = {255, 255, 255}; // local maxima: white
 constexpr std::uint8_t kSaddleRgb[3] = {255, 0, 255};    // saddles: magenta
 constexpr double kBackground = 0.12;                     // dark grey
+constexpr double kText = 0.85; // light grey: text never takes a marker's or a segment's colour
 
 std::vector<Flag> viewerFlags() {
   std::vector<Flag> table = algorithmFlags();
@@ -269,8 +270,8 @@ private:
   }
 
   void setText(const std::string& text, int x, int y, int font, const std::string& id) {
-    if (!viewer_.updateText(text, x, y, font, 1.0, 1.0, 1.0, id))
-      viewer_.addText(text, x, y, font, 1.0, 1.0, 1.0, id);
+    if (!viewer_.updateText(text, x, y, font, kText, kText, kText, id))
+      viewer_.addText(text, x, y, font, kText, kText, kText, id);
   }
 
   static std::string keyList() {
