@@ -714,7 +714,7 @@ TEST_F(ToolTest, ReadsMeshesAsFaceCentroidsOrAreaSamples) {
   writeFile("cigar.off", toOff(triangles));
   writeFile("cigar.obj", toObj(triangles));
   writeFile("quads.obj", toObj(quads));
-  ASSERT_EQ(pcl::io::savePLYFile((dir_ / "cigar.ply").string(), toPolygonMesh(triangles)), 0);
+  ASSERT_EQ(pcl::io::savePLYFileBinary((dir_ / "cigar.ply").string(), toPolygonMesh(triangles)), 0);
 
   // One point per face: as many points as faces, the same from every format.
   std::vector<Output> outputs;
