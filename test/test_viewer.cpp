@@ -230,6 +230,36 @@ TEST_F(ViewerTest, OneViewToTheGivenFileWithTheRequestedSegments) {
   EXPECT_EQ(files, (std::set<std::string>{"hand.pcd", "out.png"}));
 }
 
+TEST_F(ViewerTest, KeysMoveThroughTheHierarchyAndListThemselves) {
+  if (!haveXvfbRun())
+    GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot render off-screen";
+  const std::size_t t = librarySegments(0);
+  ASSERT_EQ(run("hand.pcd -screenshot plain.png -quiet").status, 0);
+  ASSERT_EQ(run("hand.pcd -screenshot up.png -keys 'Up Up Down' -quiet").status, 0);
+  ASSERT_EQ(run("hand.pcd -screenshot down.png -keys Down -quiet").status, 0);
+  ASSERT_EQ(run("hand.pcd -screenshot keys.png -keys h -quiet").status, 0);
+  pcl_ncut_seg::RgbImage image;
+  std::map<std::uint32_t, std::size_t> plain, up, down, keys;
+  readShot(dir_ / "plain.png", 640, 480, image, plain);
+  readShot(dir_ / "up.png", 640, 480, image, up);
+  readShot(dir_ / "down.png", 640, 480, image, down);
+  readShot(dir_ / "keys.png", 640, 480, image, keys);
+  EXPECT_EQ(paletteIdsShown(plain, 64), range(t));
+  EXPECT_EQ(paletteIdsShown(up, 64), range(librarySegments(static_cast<int>(t) + 1)));
+  EXPECT_EQ(paletteIdsShown(down, 64), range(librarySegments(static_cast<int>(t) - 1)));
+  // h lists the keys: far more text pixels (light grey, blended into the background).
+  auto greyPixels = [](const std::map<std::uint32_t, std::size_t>& hist) {
+    std::size_t n = 0;
+    for (const auto& [rgb, count] : hist) {
+      const int r = rgb >> 16, g = (rgb >> 8) & 255, b = rgb & 255;
+      if (r == g && g == b && r > 60)
+        n += count;
+    }
+    return n;
+  };
+  EXPECT_GT(greyPixels(keys), 3 * greyPixels(plain) + 500);
+}
+
 TEST_F(ViewerTest, BadCommandLinesFailWithOneLine) {
   const std::vector<std::pair<std::string, bool>> bad = {
       {"hand.pcd -screenshot out.png -view nonsense", true},
@@ -237,6 +267,8 @@ TEST_F(ViewerTest, BadCommandLinesFailWithOneLine) {
       {"missing.pcd -screenshot out.png", true},
       {"hand.pcd -screenshot out.png -size 10", true},
       {"hand.pcd -bogus", true},
+      {"hand.pcd -screenshot out.png -keys 'Up x'", true},
+      {"hand.pcd -screenshot out.png -up +w", true},
       {"hand.pcd -screenshot no_such_dir/out.png", true},
       {"hand.pcd -screenshot out.png", false}, // no X display
   };

@@ -71,7 +71,14 @@ std::vector<Flag> viewerFlags() {
                            "the view of -screenshot: segments, centrality, supernodes, refined, "
                            "coarser, finer, or all (FILE_<view>.png each)",
                            "segments"));
+  table.push_back(textFlag("-keys", "\"K1 K2 ...\"",
+                           "with -screenshot: press these keys (1, 2, 3, 4, Up, Down, h) before "
+                           "each view is taken"));
   table.push_back(textFlag("-size", "WxH", "window or screenshot size in pixels", "640x480"));
+  table.push_back(textFlag("-up", "AXIS",
+                           "the model's axis that points up on screen: +x, -x, +y, -y, +z or -z; "
+                           "the camera looks from the side of least extent",
+                           "the middle principal axis"));
   table.push_back(intFlag("-point_size", "P", "point size in pixels, >= 1", "3", 1, 50));
   for (const Flag& f : commonFlags())
     table.push_back(f);
@@ -253,6 +260,7 @@ public:
     setText(keys_shown_ ? keyList() : std::string("h: keys"), 10, 10, font * 4 / 5, "keys");
   }
 
+  void hideKeys() { keys_shown_ = false; }
   void toggleKeys() {
     keys_shown_ = !keys_shown_;
     show(view_);
@@ -277,7 +285,7 @@ private:
   static std::string keyList() {
     std::string text;
     for (const char* line : kKeys)
-      text = line + (text.empty() ? "" : "\n" + text); // addText stacks lines upwards
+      text += (text.empty() ? "" : "\n") + std::string(line);
     return text;
   }
 
@@ -288,9 +296,10 @@ private:
   bool keys_shown_ = false;
 };
 
-/** Look along the cloud's direction of least extent (its largest silhouette), with the
- * direction of middle extent up, so that the widest extent runs across the window. */
-void placeCamera(pcl::visualization::PCLVisualizer& viewer, const pcl::PointCloud<pcl::PointXYZ>& cloud) {
+/** Look along the cloud's direction of least extent (its largest silhouette). Up is the given
+ * axis, or else the direction of middle extent, so that the widest extent runs across. */
+void placeCamera(pcl::visualization::PCLVisualizer& viewer,
+                 const pcl::PointCloud<pcl::PointXYZ>& cloud, const Eigen::Vector3d* up_axis) {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   std::size_t n = 0;
   for (const auto& p : cloud)
@@ -307,13 +316,67 @@ void placeCamera(pcl::visualization::PCLVisualizer& viewer, const pcl::PointClou
       const Eigen::Vector3d d = p.getVector3fMap().cast<double>() - mean;
       cov += d * d.transpose();
     }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // eigenvalues ascending
-  const Eigen::Vector3d view = eig.eigenvectors().col(0), up = eig.eigenvectors().col(1);
-  const double extent = std::sqrt(std::max(eig.eigenvalues()(2) / static_cast<double>(n), 1e-12));
+  Eigen::Vector3d view, up;
+  if (up_axis) {
+    // The least extent among the directions across the up axis.
+    up = *up_axis;
+    const Eigen::Matrix3d across = Eigen::Matrix3d::Identity() - up * up.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(across * cov * across);
+    // Eigenvalues ascending; the first is ~0 along up itself: take the smaller of the others.
+    view = std::abs(eig.eigenvectors().col(0).dot(up)) > 0.5 ? eig.eigenvectors().col(1)
+                                                              : eig.eigenvectors().col(0);
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // eigenvalues ascending
+    view = eig.eigenvectors().col(0);
+    up = eig.eigenvectors().col(1);
+  }
+  const double extent = std::sqrt(std::max(cov.trace() / static_cast<double>(n), 1e-12));
   const Eigen::Vector3d eye = mean + view * 10.0 * extent;
   viewer.setCameraPosition(eye.x(), eye.y(), eye.z(), mean.x(), mean.y(), mean.z(), up.x(),
                            up.y(), up.z());
   viewer.resetCamera(); // fit the cloud, keeping the direction
+}
+
+bool parseUp(const std::string& text, Eigen::Vector3d& up) {
+  if (text.size() == 2 && (text[0] == '+' || text[0] == '-') && text[1] >= 'x' &&
+      text[1] <= 'z') {
+    up = Eigen::Vector3d::Zero();
+    up(text[1] - 'x') = text[0] == '+' ? 1.0 : -1.0;
+    return true;
+  }
+  fail("bad value '" + text + "' for -up: expected +x, -x, +y, -y, +z or -z");
+  return false;
+}
+
+/** What a key does (the window's keys, and -keys of -screenshot); false for another key. */
+bool pressKey(const std::string& key, Scene& scene, Drawer& drawer, bool print_keys) {
+  if (key == "1") {
+    drawer.show(View::Segments);
+  } else if (key == "2") {
+    drawer.show(View::Centrality);
+  } else if (key == "3") {
+    drawer.show(View::Supernodes);
+  } else if (key == "4") {
+    drawer.show(View::Refined);
+  } else if (key == "Up" || key == "bracketright" || key == "Down" || key == "bracketleft") {
+    const bool finer = key == "Up" || key == "bracketright";
+    const std::size_t t = scene.currentSegments();
+    if (!scene.cutInto(finer ? t + 1 : t - 1))
+      warn(std::string("no ") + (finer ? "finer" : "coarser") +
+           " cut: the hierarchy has no level with " + std::to_string(finer ? t + 1 : t - 1) +
+           " segments");
+    drawer.show(View::Segments);
+  } else if (key == "h" || key == "H") {
+    if (print_keys) {
+      print_info("pcl_ncut_seg_viewer keys:\n");
+      for (const char* line : kKeys)
+        print_info("  %s\n", line);
+    }
+    drawer.toggleKeys();
+  } else {
+    return false;
+  }
+  return true;
 }
 
 bool parseSize(const std::string& text, int& width, int& height) {
@@ -391,9 +454,29 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  std::vector<std::string> keys;
+  if (flags.has("-keys")) {
+    if (!screenshot) {
+      fail("-keys presses keys before -screenshot; without it, press them in the window");
+      return 1;
+    }
+    std::istringstream in(flags.text("-keys"));
+    for (std::string key; in >> key;)
+      keys.push_back(key);
+    for (const std::string& key : keys)
+      if (key != "1" && key != "2" && key != "3" && key != "4" && key != "Up" && key != "Down" &&
+          key != "h") {
+        fail("unknown key '" + key + "' in -keys: expected 1, 2, 3, 4, Up, Down or h");
+        return 1;
+      }
+  }
   int width = 640, height = 480;
   if (flags.has("-size") && !parseSize(flags.text("-size"), width, height))
     return 1;
+  Eigen::Vector3d up_axis;
+  if (flags.has("-up") && !parseUp(flags.text("-up"), up_axis))
+    return 1;
+  const Eigen::Vector3d* up = flags.has("-up") ? &up_axis : nullptr;
   const int point_size = flags.has("-point_size") ? static_cast<int>(flags.integer("-point_size")) : 3;
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display) {
@@ -437,10 +520,11 @@ int main(int argc, char** argv) {
     viewer.setShowFPS(false);
     Drawer drawer(viewer, scene, point_size, width, height);
     drawer.show(View::Segments);
-    placeCamera(viewer, *input.cloud);
+    placeCamera(viewer, *input.cloud, up);
     for (View view : views) {
+      // One view: the file as given; all: FILE_<view>.png beside it.
       const std::string path = views.size() == 1 ? shot
-                                                 : directoryOf(shot) + "/" + stem(shot) + "_" +
+                                                 : shot.substr(0, shot.size() - 4) + "_" +
                                                        viewName(view) + ".png";
       if (view == View::Coarser || view == View::Finer) {
         const std::size_t want = view == View::Finer ? scene.firstSegments() + 1
@@ -451,7 +535,10 @@ int main(int argc, char** argv) {
       } else if (scene.currentSegments() != scene.firstSegments()) {
         scene.cutInto(scene.firstSegments());
       }
+      drawer.hideKeys();
       drawer.show(view);
+      for (const std::string& key : keys)
+        pressKey(key, scene, drawer, false);
       if (!writeScreenshot(viewer, path))
         return 1;
       if (!quiet)
@@ -466,32 +553,10 @@ int main(int argc, char** argv) {
   viewer.setBackgroundColor(kBackground, kBackground, kBackground);
   Drawer drawer(viewer, scene, point_size, width, height);
   drawer.show(View::Segments);
-  placeCamera(viewer, *input.cloud);
+  placeCamera(viewer, *input.cloud, up);
   viewer.registerKeyboardCallback([&](const pcl::visualization::KeyboardEvent& event) {
-    if (!event.keyDown())
-      return;
-    const std::string key = event.getKeySym();
-    if (key == "1")
-      drawer.show(View::Segments);
-    else if (key == "2")
-      drawer.show(View::Centrality);
-    else if (key == "3")
-      drawer.show(View::Supernodes);
-    else if (key == "4")
-      drawer.show(View::Refined);
-    else if (key == "Up" || key == "bracketright" || key == "Down" || key == "bracketleft") {
-      const bool finer = key == "Up" || key == "bracketright";
-      const std::size_t t = scene.currentSegments();
-      if (!scene.cutInto(finer ? t + 1 : t - 1))
-        print_warn("No %s cut: the hierarchy has no level with %zu segments.\n",
-                   finer ? "finer" : "coarser", finer ? t + 1 : t - 1);
-      drawer.show(View::Segments);
-    } else if (key == "h" || key == "H") {
-      print_info("pcl_ncut_seg_viewer keys:\n");
-      for (const char* line : kKeys)
-        print_info("  %s\n", line);
-      drawer.toggleKeys();
-    }
+    if (event.keyDown())
+      pressKey(event.getKeySym(), scene, drawer, true);
   });
   viewer.spin();
   return 0;
