@@ -567,13 +567,15 @@ TEST_F(ToolTest, ReportsPhasesCountsAndPeakMemory) {
     const std::regex phase_line(std::string("^") + phase + "\\s*:\\s*[0-9.]+ s$");
     EXPECT_TRUE(std::any_of(out.begin(), out.end(),
                             [&](const std::string& l) { return std::regex_match(l, phase_line); }))
-        << phase << " missing:\n" << r.out;
+        << phase << " missing:\n"
+        << r.out;
   }
   for (const char* count : {"n", "m", "l", "t"}) {
     const std::regex count_line(std::string("^") + count + "\\s*:\\s*[0-9]+ .*");
     EXPECT_TRUE(std::any_of(out.begin(), out.end(),
                             [&](const std::string& l) { return std::regex_match(l, count_line); }))
-        << count << " missing:\n" << r.out;
+        << count << " missing:\n"
+        << r.out;
   }
   const std::regex mem_line("^mem\\s*:\\s*([0-9.]+) MiB peak resident memory$");
   double mib = -1;
@@ -582,7 +584,7 @@ TEST_F(ToolTest, ReportsPhasesCountsAndPeakMemory) {
     if (std::regex_match(l, m, mem_line))
       mib = std::stod(m[1]);
   }
-  EXPECT_GT(mib, 1.0) << r.out;   // a process with PCL loaded uses more than 1 MiB
+  EXPECT_GT(mib, 1.0) << r.out; // a process with PCL loaded uses more than 1 MiB
   EXPECT_LT(mib, 4096.0) << r.out;
 }
 

@@ -178,8 +178,7 @@ TEST_F(ViewerTest, RendersEveryViewOffScreen) {
   seg.extract(segments);
   const std::size_t m = seg.getNumberOfSupernodes(false), l = seg.getNumberOfSupernodes(true);
 
-  for (const char* view :
-       {"segments", "centrality", "supernodes", "refined", "coarser", "finer"}) {
+  for (const char* view : {"segments", "centrality", "supernodes", "refined", "coarser", "finer"}) {
     SCOPED_TRACE(view);
     pcl_ncut_seg::RgbImage image;
     std::map<std::uint32_t, std::size_t> hist;
@@ -216,7 +215,8 @@ TEST_F(ViewerTest, RendersEveryViewOffScreen) {
 TEST_F(ViewerTest, OneViewToTheGivenFileWithTheRequestedSegments) {
   if (!haveXvfbRun())
     GTEST_SKIP() << "xvfb-run is not installed (Debian package xvfb): cannot render off-screen";
-  const ViewerRun r = run("hand.pcd -segments 4 -screenshot out.png -view segments -size 320x240 -quiet");
+  const ViewerRun r =
+      run("hand.pcd -segments 4 -screenshot out.png -view segments -size 320x240 -quiet");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_TRUE(lines(r.out).empty()) << r.out;
   pcl_ncut_seg::RgbImage image;

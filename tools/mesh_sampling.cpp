@@ -167,8 +167,8 @@ bool readObj(const std::string& path, TriangleMesh& mesh, std::string* error) {
   while (nextTokens(in, tokens, line_no)) {
     if (tokens[0] == "v") {
       float xyz[3];
-      if (tokens.size() < 4 || !parseNumber(tokens[1], xyz[0]) ||
-          !parseNumber(tokens[2], xyz[1]) || !parseNumber(tokens[3], xyz[2]))
+      if (tokens.size() < 4 || !parseNumber(tokens[1], xyz[0]) || !parseNumber(tokens[2], xyz[1]) ||
+          !parseNumber(tokens[3], xyz[2]))
         return fail(error, path, line_no, "bad vertex");
       result.vertices.insert(result.vertices.end(), xyz, xyz + 3);
     } else if (tokens[0] == "f") {

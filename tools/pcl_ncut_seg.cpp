@@ -116,8 +116,8 @@ pcl::PCLPointCloud2 makeOutput(const pcl::PCLPointCloud2& input,
   };
   std::vector<Copy> copies;
   for (const pcl::PCLPointField& f : input.fields) {
-    const bool wanted = keep_fields ? f.name != "label"
-                                    : (f.name == "x" || f.name == "y" || f.name == "z");
+    const bool wanted =
+        keep_fields ? f.name != "label" : (f.name == "x" || f.name == "y" || f.name == "z");
     if (!wanted)
       continue;
     pcl::PCLPointField out = f;
@@ -154,7 +154,8 @@ pcl::PCLPointCloud2 makeOutput(const pcl::PCLPointCloud2& input,
 }
 
 /** The points of one segment, as an unorganised cloud with the same fields. */
-pcl::PCLPointCloud2 subset(const pcl::PCLPointCloud2& blob, const std::vector<std::size_t>& points) {
+pcl::PCLPointCloud2 subset(const pcl::PCLPointCloud2& blob,
+                           const std::vector<std::size_t>& points) {
   pcl::PCLPointCloud2 out;
   out.header = blob.header;
   out.fields = blob.fields;

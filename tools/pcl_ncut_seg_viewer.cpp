@@ -183,8 +183,9 @@ public:
         if (label[i] >= 0)
           Segmenter::segmentColor(static_cast<std::size_t>(label[i]), p.r, p.g, p.b);
       }
-      t << "Supernodes " << (refined ? "after" : "before") << " local refinement: "
-        << (refined ? "l = " : "m = ") << seg_.getNumberOfSupernodes(refined);
+      t << "Supernodes " << (refined ? "after" : "before")
+        << " local refinement: " << (refined ? "l = " : "m = ")
+        << seg_.getNumberOfSupernodes(refined);
     }
     title = t.str();
     return out;
@@ -213,10 +214,18 @@ private:
     const float f = h - static_cast<float>(sector);
     float r = 0, g = 0, b = 0;
     switch (sector) {
-    case 0: r = 1, g = f; break;         // red -> yellow
-    case 1: r = 1 - f, g = 1; break;     // yellow -> green
-    case 2: g = 1, b = f; break;         // green -> cyan
-    default: g = 1 - f, b = 1; break;    // cyan -> blue
+    case 0:
+      r = 1, g = f;
+      break; // red -> yellow
+    case 1:
+      r = 1 - f, g = 1;
+      break; // yellow -> green
+    case 2:
+      g = 1, b = f;
+      break; // green -> cyan
+    default:
+      g = 1 - f, b = 1;
+      break; // cyan -> blue
     }
     p.r = static_cast<std::uint8_t>(std::lround(r * 255));
     p.g = static_cast<std::uint8_t>(std::lround(g * 255));
@@ -324,7 +333,7 @@ void placeCamera(pcl::visualization::PCLVisualizer& viewer,
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(across * cov * across);
     // Eigenvalues ascending; the first is ~0 along up itself: take the smaller of the others.
     view = std::abs(eig.eigenvectors().col(0).dot(up)) > 0.5 ? eig.eigenvectors().col(1)
-                                                              : eig.eigenvectors().col(0);
+                                                             : eig.eigenvectors().col(0);
   } else {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov); // eigenvalues ascending
     view = eig.eigenvectors().col(0);
@@ -332,14 +341,13 @@ void placeCamera(pcl::visualization::PCLVisualizer& viewer,
   }
   const double extent = std::sqrt(std::max(cov.trace() / static_cast<double>(n), 1e-12));
   const Eigen::Vector3d eye = mean + view * 10.0 * extent;
-  viewer.setCameraPosition(eye.x(), eye.y(), eye.z(), mean.x(), mean.y(), mean.z(), up.x(),
-                           up.y(), up.z());
+  viewer.setCameraPosition(eye.x(), eye.y(), eye.z(), mean.x(), mean.y(), mean.z(), up.x(), up.y(),
+                           up.z());
   viewer.resetCamera(); // fit the cloud, keeping the direction
 }
 
 bool parseUp(const std::string& text, Eigen::Vector3d& up) {
-  if (text.size() == 2 && (text[0] == '+' || text[0] == '-') && text[1] >= 'x' &&
-      text[1] <= 'z') {
+  if (text.size() == 2 && (text[0] == '+' || text[0] == '-') && text[1] >= 'x' && text[1] <= 'z') {
     up = Eigen::Vector3d::Zero();
     up(text[1] - 'x') = text[0] == '+' ? 1.0 : -1.0;
     return true;
@@ -477,12 +485,14 @@ int main(int argc, char** argv) {
   if (flags.has("-up") && !parseUp(flags.text("-up"), up_axis))
     return 1;
   const Eigen::Vector3d* up = flags.has("-up") ? &up_axis : nullptr;
-  const int point_size = flags.has("-point_size") ? static_cast<int>(flags.integer("-point_size")) : 3;
+  const int point_size =
+      flags.has("-point_size") ? static_cast<int>(flags.integer("-point_size")) : 3;
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display) {
     fail(std::string("no X display (DISPLAY is not set): ") +
-         (screenshot ? "run under xvfb-run -a" : "run on a desktop, or use -screenshot under "
-                                                 "xvfb-run -a"));
+         (screenshot ? "run under xvfb-run -a"
+                     : "run on a desktop, or use -screenshot under "
+                       "xvfb-run -a"));
     return 1;
   }
   Segmenter seg;
@@ -523,12 +533,12 @@ int main(int argc, char** argv) {
     placeCamera(viewer, *input.cloud, up);
     for (View view : views) {
       // One view: the file as given; all: FILE_<view>.png beside it.
-      const std::string path = views.size() == 1 ? shot
-                                                 : shot.substr(0, shot.size() - 4) + "_" +
-                                                       viewName(view) + ".png";
+      const std::string path =
+          views.size() == 1 ? shot
+                            : shot.substr(0, shot.size() - 4) + "_" + viewName(view) + ".png";
       if (view == View::Coarser || view == View::Finer) {
-        const std::size_t want = view == View::Finer ? scene.firstSegments() + 1
-                                                     : scene.firstSegments() - 1;
+        const std::size_t want =
+            view == View::Finer ? scene.firstSegments() + 1 : scene.firstSegments() - 1;
         if (!scene.cutInto(want))
           warn(std::string("no ") + viewName(view) + " cut with " + std::to_string(want) +
                " segments; showing " + std::to_string(scene.currentSegments()));

@@ -28,8 +28,7 @@ bool readPng(const std::string& path, RgbImage& image) {
   for (int y = 0; y < dims[1]; ++y)
     for (int x = 0; x < dims[0]; ++x) {
       const unsigned char* in = px + (static_cast<std::size_t>(y) * dims[0] + x) * channels;
-      std::uint8_t* out =
-          &image.rgb[(static_cast<std::size_t>(dims[1] - 1 - y) * dims[0] + x) * 3];
+      std::uint8_t* out = &image.rgb[(static_cast<std::size_t>(dims[1] - 1 - y) * dims[0] + x) * 3];
       for (int c = 0; c < 3; ++c)
         out[c] = in[channels >= 3 ? c : 0];
     }

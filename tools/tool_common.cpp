@@ -164,8 +164,8 @@ double Flags::real(const std::string& name) const {
 bool parseFlags(int argc, char** argv, const std::vector<Flag>& table, Flags& flags) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    const auto flag = std::find_if(table.begin(), table.end(),
-                                   [&arg](const Flag& f) { return f.name == arg; });
+    const auto flag =
+        std::find_if(table.begin(), table.end(), [&arg](const Flag& f) { return f.name == arg; });
     if (flag == table.end()) {
       if (arg.size() > 1 && arg[0] == '-') {
         fail("unknown option " + arg + " (see -h)");
@@ -389,9 +389,9 @@ bool toTriangleMesh(const std::string& path, const pcl::PolygonMesh& polygons, T
         return false;
       }
     for (std::size_t i = 1; i + 1 < v.size(); ++i) {
-      mesh.faces.insert(mesh.faces.end(), {static_cast<std::uint32_t>(v[0]),
-                                           static_cast<std::uint32_t>(v[i]),
-                                           static_cast<std::uint32_t>(v[i + 1])});
+      mesh.faces.insert(mesh.faces.end(),
+                        {static_cast<std::uint32_t>(v[0]), static_cast<std::uint32_t>(v[i]),
+                         static_cast<std::uint32_t>(v[i + 1])});
       mesh.original_face.push_back(static_cast<std::uint32_t>(f));
     }
   }
