@@ -639,7 +639,7 @@ void ProgressBar::update(const char* phase, double fraction) {
   if (!enabled_)
     return;
   std::lock_guard<std::mutex> lock(mutex_);
-  if (phase_ != phase || fraction <= 0.0) {
+  if (phase_ != phase) { // a new phase (the last one ended, or is left without an end)
     draw(true);
     phase_ = phase;
     start_ = std::chrono::steady_clock::now();
