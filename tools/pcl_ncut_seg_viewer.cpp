@@ -109,7 +109,7 @@ const char* const kKeys[] = {
 /** The segmenter and everything a view needs. */
 class Scene {
 public:
-  Scene(Segmenter& seg, const Input& input) : seg_(seg), input_(input) {}
+  explicit Scene(Segmenter& seg) : seg_(seg) {}
 
   /** Run the first cut; false on failure. */
   bool segment() {
@@ -233,7 +233,6 @@ private:
   }
 
   Segmenter& seg_;
-  const Input& input_;
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr colored_;
   std::size_t first_segments_ = 0, current_segments_ = 0;
   double first_threshold_ = 0;
@@ -503,7 +502,7 @@ int main(int argc, char** argv) {
   if (input_path.empty())
     return 1;
   Input input;
-  Scene scene(seg, input);
+  Scene scene(seg);
   {
     ProgressBar progress(progressWanted(flags));
     progress.update("Read", 0.0);
