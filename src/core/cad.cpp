@@ -1,0 +1,245 @@
+// Sec. 7: point-sampled CAD models. Normal smoothing, ridge distance, the transformed kNN graph,
+// and the face-orientation similarity of supernodes.
+#include <pcl_ncut_seg/core/cad.h>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+
+namespace pcl_ncut_seg {
+namespace {
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kMinWeight = 1e-200; // as in supernode_graph.cpp: keeps D regular
+
+bool usable(const float* n) {
+  return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) &&
+         n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0f;
+}
+} // namespace
+
+std::vector<float> smoothNormals(const CsrGraph& graph, const float* normals, int iterations) {
+  const std::size_t n = graph.numVertices();
+  std::vector<float> cur(3 * n, 0.0f), next(3 * n, 0.0f);
+  for (std::size_t p = 0; p < n; ++p)
+    if (usable(normals + 3 * p)) {
+      const float* v = normals + 3 * p;
+      const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      for (int d = 0; d < 3; ++d)
+        cur[3 * p + d] = v[d] / len;
+    }
+  for (int it = 0; it < iterations; ++it) {
+    for (std::size_t p = 0; p < n; ++p) {
+      const float* np = &cur[3 * p];
+      double sum[3] = {np[0], np[1], np[2]};
+      const bool has = np[0] != 0.0f || np[1] != 0.0f || np[2] != 0.0f;
+      // The first usable normal fixes the orientation when p has none of its own.
+      const float* ref = has ? np : nullptr;
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const float* nq = &cur[3 * graph.targets[e]];
+        if (nq[0] == 0.0f && nq[1] == 0.0f && nq[2] == 0.0f)
+          continue;
+        if (!ref)
+          ref = nq;
+        const float s = ref[0] * nq[0] + ref[1] * nq[1] + ref[2] * nq[2] < 0.0f ? -1.0f : 1.0f;
+        for (int d = 0; d < 3; ++d)
+          sum[d] += s * nq[d];
+      }
+      const double len = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+      for (int d = 0; d < 3; ++d)
+        next[3 * p + d] = len > 0.0 ? static_cast<float>(sum[d] / len) : 0.0f;
+    }
+    cur.swap(next);
+  }
+  return cur;
+}
+
+std::vector<bool> ridgePoints(const CsrGraph& graph, const std::vector<float>& normals,
+                              float ridge_angle) {
+  const std::size_t n = graph.numVertices();
+  std::vector<bool> ridge(n, false);
+  const double limit = ridge_angle * kDegree;
+  for (std::size_t p = 0; p < n; ++p) {
+    const float* np = &normals[3 * p];
+    if (np[0] == 0.0f && np[1] == 0.0f && np[2] == 0.0f)
+      continue;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const float* nq = &normals[3 * graph.targets[e]];
+      if (nq[0] == 0.0f && nq[1] == 0.0f && nq[2] == 0.0f)
+        continue;
+      const double c = std::abs(double(np[0]) * nq[0] + double(np[1]) * nq[1] +
+                                double(np[2]) * nq[2]);
+      sum += std::acos(std::min(c, 1.0)); // unoriented: the angle is at most 90 degrees
+      ++count;
+    }
+    ridge[p] = count > 0 && sum / double(count) > limit;
+  }
+  return ridge;
+}
+
+std::vector<float> ridgeDistance(const CsrGraph& graph, const std::vector<bool>& ridge) {
+  // Multi-source Dijkstra from every ridge point.
+  const std::size_t n = graph.numVertices();
+  std::vector<float> phi(n, std::numeric_limits<float>::infinity());
+  using Item = std::pair<float, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (ridge[p]) {
+      phi[p] = 0.0f;
+      queue.push({0.0f, p});
+    }
+  while (!queue.empty()) {
+    const auto [d, p] = queue.top();
+    queue.pop();
+    if (d > phi[p])
+      continue;
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const std::uint32_t q = graph.targets[e];
+      const float nd = d + graph.lengths[e];
+      if (nd < phi[q]) {
+        phi[q] = nd;
+        queue.push({nd, q});
+      }
+    }
+  }
+  return phi;
+}
+
+CsrGraph transformGraph(const CsrGraph& graph, const std::vector<float>& phi, float shrink,
+                        float stretch) {
+  CsrGraph out = graph;
+  const std::size_t n = graph.numVertices();
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const float d = graph.lengths[e];
+      const float a_p = phi[p], a_q = phi[graph.targets[e]];
+      float a = 0.0f; // share of the edge that points away from the ridge
+      if (d > 0.0f && std::isfinite(a_p) && std::isfinite(a_q))
+        a = std::min(1.0f, std::abs(a_p - a_q) / d);
+      out.lengths[e] = d * (shrink + (stretch - shrink) * a);
+    }
+  return out;
+}
+
+std::map<std::pair<std::uint32_t, std::uint32_t>, double>
+faceContactAngles(const CsrGraph& graph, const float* xyz,
+                  const std::vector<std::uint32_t>& label) {
+  const std::size_t n = graph.numVertices();
+  // The face normal of p's supernode at p: a plane fitted to the points of the same supernode
+  // within two kNN steps. Only points on a contact need it. Zero when the fit is not planar
+  // (fewer than 3 points, or collinear ones).
+  std::vector<float> normal(3 * n, 0.0f);
+  std::vector<char> done(n, 0);
+  std::vector<std::uint32_t> mark(n, std::numeric_limits<std::uint32_t>::max());
+  std::vector<std::uint32_t> ring;
+  auto faceNormal = [&](std::uint32_t p) {
+    if (done[p])
+      return;
+    done[p] = 1;
+    ring.clear();
+    ring.push_back(p);
+    mark[p] = p;
+    for (std::size_t step = 0, begin = 0; step < 2; ++step) {
+      const std::size_t end = ring.size();
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::uint32_t v = ring[i];
+        for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (label[q] == label[p] && mark[q] != p) {
+            mark[q] = p;
+            ring.push_back(q);
+          }
+        }
+      }
+      begin = end;
+    }
+    if (ring.size() < 3)
+      return;
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (std::uint32_t v : ring)
+      mean += Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+    mean /= double(ring.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (std::uint32_t v : ring) {
+      const Eigen::Vector3d d = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - mean;
+      cov += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+    const Eigen::Vector3d lambda = solver.eigenvalues(); // ascending
+    if (!(lambda[1] > 1e-3 * lambda[2]))
+      return; // collinear: no plane
+    const Eigen::Vector3d v = solver.eigenvectors().col(0);
+    for (int d = 0; d < 3; ++d)
+      normal[3 * p + d] = static_cast<float>(v[d]);
+  };
+
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<double, std::size_t>> sums;
+  for (std::uint32_t p = 0; p < n; ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const std::uint32_t q = graph.targets[e];
+      if (label[q] <= label[p])
+        continue; // each contact edge once, from its smaller label's side
+      auto& entry = sums[{label[p], label[q]}];
+      faceNormal(p);
+      faceNormal(q);
+      const float* a = &normal[3 * p];
+      const float* b = &normal[3 * q];
+      if ((a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f) ||
+          (b[0] == 0.0f && b[1] == 0.0f && b[2] == 0.0f))
+        continue;
+      const double c = std::abs(double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]);
+      entry.first += std::acos(std::min(c, 1.0)) / kDegree;
+      ++entry.second;
+    }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, double> angles;
+  for (const auto& [key, sum] : sums)
+    angles[key] = sum.second > 0 ? sum.first / double(sum.second) : 90.0;
+  return angles;
+}
+
+WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
+                                     const Connectivity& conn, const Connectivity& face_angles,
+                                     const SimilarityParams& params, double face_angle) {
+  // The r_i - m_i edges of eq. (7) as in Sec. 5.1; the member edges are replaced.
+  SimilarityParams base = params;
+  base.connect_adjacent_trees = false;
+  WeightedGraph g = buildSupernodeGraph(supernodes, stats, conn, base);
+  const auto l = static_cast<std::uint32_t>(supernodes.size());
+  g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
+                               [l](const WeightedGraph::Edge& edge) { return edge.a >= l; }),
+                g.edges.end());
+  // Sec. 7: supernodes are similar when the faces they represent have the same orientation
+  // where they meet; every touching pair gets an edge, so a face split into several
+  // supernodes is held together whether or not they met at a saddle.
+  for (const auto& [key, theta] : face_angles) {
+    const double x = theta / face_angle;
+    g.edges.push_back({l + key.first, l + key.second, std::max(std::exp(-x * x), kMinWeight)});
+  }
+  return g;
+}
+
+Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
+                    const AnalysisParams& params, const CadParams& cad, PhaseTimes& times) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<float> smoothed = smoothNormals(graph, normals, cad.smoothing_iterations);
+  const std::vector<float> phi = ridgeDistance(graph, ridgePoints(graph, smoothed, cad.ridge_angle));
+  CsrGraph transformed = transformGraph(graph, phi, cad.shrink, cad.stretch);
+  times.knn += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  Analysis a = analyze(std::move(transformed), params, times);
+  const auto before_angles = std::chrono::steady_clock::now();
+  a.cad = true;
+  a.face_angle = cad.face_angle;
+  a.face_angles = faceContactAngles(a.graph, xyz, a.supernodes.label);
+  times.refinement +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - before_angles).count();
+  return a;
+}
+
+} // namespace pcl_ncut_seg
