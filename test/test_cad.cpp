@@ -14,8 +14,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -182,6 +184,35 @@ std::vector<int> segmentCad(const typename pcl::PointCloud<PointT>::ConstPtr& cl
 
 constexpr double kRandBar = 0.95; // each face one segment: merging two faces costs more
 
+/** \brief Each face has a segment of its own: the segment holding most of a face's points holds
+ * at least `share` of them, and no two faces have the same one. Returns an explanation of the
+ * first failure, or an empty string. */
+std::string eachFaceHasItsSegment(const std::vector<int>& segment, const std::vector<int>& face,
+                                  int num_faces, double share) {
+  std::vector<std::map<int, std::size_t>> count(num_faces);
+  std::vector<std::size_t> size(num_faces, 0);
+  for (std::size_t i = 0; i < face.size(); ++i) {
+    ++count[face[i]][segment[i]];
+    ++size[face[i]];
+  }
+  std::map<int, int> owner;
+  for (int f = 0; f < num_faces; ++f) {
+    int best = -1;
+    std::size_t best_count = 0;
+    for (const auto& [s, c] : count[f])
+      if (c > best_count)
+        best = s, best_count = c;
+    if (double(best_count) < share * double(size[f]))
+      return "face " + std::to_string(f) + ": its main segment holds only " +
+             std::to_string(best_count) + " of " + std::to_string(size[f]) + " points";
+    if (owner.count(best))
+      return "faces " + std::to_string(owner[best]) + " and " + std::to_string(f) +
+             " share segment " + std::to_string(best);
+    owner[best] = f;
+  }
+  return "";
+}
+
 class CadShapes : public ::testing::TestWithParam<CadCase> {};
 
 TEST_P(CadShapes, EachFaceIsOneSegment) {
@@ -194,6 +225,7 @@ TEST_P(CadShapes, EachFaceIsOneSegment) {
             << ", supernodes l " << l << ", segments t " << t << ", Rand index " << ri
             << std::endl;
   EXPECT_GE(ri, kRandBar);
+  EXPECT_EQ(eachFaceHasItsSegment(labels, shape.labels, shape.num_parts, 0.9), "");
 }
 
 TEST_P(CadShapes, RigidMotionDoesNotChangeTheResult) {

@@ -45,7 +45,7 @@ using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
 const std::vector<std::string> kValueOptions = {"-k",         "-samples",  "-crossing", "-area",
                                                 "-height",    "-beta",     "-alpha1",   "-alpha2",
                                                 "-threshold", "-segments", "-splits",   "-threads"};
-const std::vector<std::string> kSwitches = {"-paper", "-quiet", "-h", "--help"};
+const std::vector<std::string> kSwitches = {"-paper", "-cad", "-quiet", "-h", "--help"};
 
 const char* kBundledModel = "hand.pcd";
 
@@ -90,6 +90,8 @@ void printHelp(const char* name) {
              d.getNumberOfThreads());
   print_info("    -paper        = the paper to the letter: no feature-width normalisation, no "
              "joining of supernode trees that meet at no saddle (default: off)\n");
+  print_info("    -cad          = CAD mode (Sec. 7): the faces of a mechanical part, separated at "
+             "its ridges (default: off)\n");
   print_info("    -quiet        = print errors only (default: off)\n");
   print_info("    -h            = this help\n");
 }
@@ -577,6 +579,8 @@ int main(int argc, char** argv) {
     seg.setNumberOfSplitValues(static_cast<int>(opt.integer["-splits"]));
   if (opt.integer.count("-threads"))
     seg.setNumberOfThreads(static_cast<unsigned>(opt.integer["-threads"]));
+  if (find_switch(argc, argv, "-cad"))
+    seg.setCadMode(true);
   if (opt.paper) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);

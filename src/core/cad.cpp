@@ -224,17 +224,208 @@ WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const Feature
   return g;
 }
 
+Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
+                         const std::vector<std::uint32_t>& label, std::size_t min_points) {
+  const std::size_t n = graph.numVertices();
+  // Regions: connected parts of a supernode's points off the ridges.
+  std::vector<std::uint32_t> region(n, kNone);
+  std::vector<std::uint32_t> size;
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t s = 0; s < n; ++s) {
+    if (ridge[s] || region[s] != kNone)
+      continue;
+    const auto id = static_cast<std::uint32_t>(size.size());
+    size.push_back(0);
+    region[s] = id;
+    stack.push_back(s);
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      ++size[id];
+      for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (!ridge[q] && region[q] == kNone && label[q] == label[v]) {
+          region[q] = id;
+          stack.push_back(q);
+        }
+      }
+    }
+  }
+  // A region below min_points joins the off-ridge neighbouring region it shares most edges
+  // with (the smallest first, so that chains of small regions end in a large one).
+  const std::size_t r = size.size();
+  std::vector<std::uint32_t> target(r);
+  for (std::uint32_t i = 0; i < r; ++i)
+    target[i] = i;
+  auto find = [&](std::uint32_t i) {
+    while (target[i] != i)
+      i = target[i] = target[target[i]];
+    return i;
+  };
+  std::vector<std::uint32_t> order(r);
+  for (std::uint32_t i = 0; i < r; ++i)
+    order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return size[a] < size[b]; });
+  std::vector<std::vector<std::uint32_t>> members(r);
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (region[p] != kNone)
+      members[region[p]].push_back(p);
+  std::vector<std::uint32_t> total(size);
+  for (std::uint32_t i : order) {
+    if (find(i) != i || total[i] >= min_points)
+      continue;
+    std::map<std::uint32_t, std::size_t> shared;
+    for (std::uint32_t p : members[i])
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (region[q] != kNone && find(region[q]) != i)
+          ++shared[find(region[q])];
+      }
+    std::uint32_t best = kNone;
+    std::size_t best_count = 0;
+    for (const auto& [j, count] : shared)
+      if (count > best_count)
+        best = j, best_count = count;
+    if (best == kNone)
+      continue; // enclosed by ridges: stays on its own
+    target[i] = best;
+    total[best] += total[i];
+    members[best].insert(members[best].end(), members[i].begin(), members[i].end());
+    members[i].clear();
+  }
+  // A small region enclosed by ridges is dissolved like ridge points.
+  std::vector<bool> loose(ridge);
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (region[p] != kNone && total[find(region[p])] < min_points)
+      loose[p] = true;
+  // Ridge points join the nearest region on the graph (multi-source Dijkstra).
+  std::vector<float> dist(n, std::numeric_limits<float>::infinity());
+  std::vector<std::uint32_t> owner(n, kNone);
+  using Item = std::pair<float, std::uint32_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (!loose[p]) {
+      owner[p] = find(region[p]);
+      dist[p] = 0.0f;
+      queue.push({0.0f, p});
+    }
+  while (!queue.empty()) {
+    const auto [d, p] = queue.top();
+    queue.pop();
+    if (d > dist[p])
+      continue;
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const std::uint32_t q = graph.targets[e];
+      const float nd = d + graph.lengths[e];
+      if (nd < dist[q] || (nd == dist[q] && owner[p] < owner[q])) {
+        dist[q] = nd;
+        owner[q] = owner[p];
+        queue.push({nd, q});
+      }
+    }
+  }
+  // Then each ridge point joins the face it lies on: among the regions that own a point within
+  // a few kNN steps, the one whose plane, fitted to its off-ridge points there, passes nearest.
+  // The nearest region alone would cut the corner of an acute face.
+  constexpr int kHops = 4;
+  constexpr std::size_t kMinFit = 6;
+  std::vector<std::uint32_t> refined(owner);
+  std::vector<std::uint32_t> seen(n, kNone), ring;
+  std::map<std::uint32_t, std::vector<std::uint32_t>> near;
+  for (std::uint32_t p = 0; p < n; ++p) {
+    if (!loose[p] || owner[p] == kNone)
+      continue;
+    ring.assign(1, p);
+    seen[p] = p;
+    near.clear();
+    for (int hop = 0, begin = 0; hop < kHops; ++hop) {
+      const int end = static_cast<int>(ring.size());
+      for (int i = begin; i < end; ++i)
+        for (std::uint32_t e = graph.offsets[ring[i]]; e < graph.offsets[ring[i] + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (seen[q] == p)
+            continue;
+          seen[q] = p;
+          ring.push_back(q);
+          if (!loose[q])
+            near[owner[q]].push_back(q);
+        }
+      begin = end;
+    }
+    double best = std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d at(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+    for (const auto& [region_id, points] : near) {
+      if (points.size() < kMinFit)
+        continue;
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+      for (std::uint32_t v : points)
+        mean += Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+      mean /= double(points.size());
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (std::uint32_t v : points) {
+        const Eigen::Vector3d d =
+            Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - mean;
+        cov += d * d.transpose();
+      }
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+      if (!(solver.eigenvalues()[1] > 1e-3 * solver.eigenvalues()[2]))
+        continue; // collinear: no plane
+      const double distance = std::abs(solver.eigenvectors().col(0).dot(at - mean));
+      if (distance < best) {
+        best = distance;
+        refined[p] = region_id;
+      }
+    }
+  }
+  owner.swap(refined);
+
+  // Compact ids in order of each supernode's first point; a component made of ridge points
+  // only keeps its old supernode.
+  Supernodes out;
+  out.label.assign(n, kNone);
+  std::map<std::uint32_t, std::uint32_t> id_of_owner, id_of_label;
+  for (std::uint32_t p = 0; p < n; ++p) {
+    std::uint32_t id;
+    if (owner[p] != kNone) {
+      auto it = id_of_owner.find(owner[p]);
+      if (it == id_of_owner.end())
+        it = id_of_owner.emplace(owner[p], static_cast<std::uint32_t>(out.origin.size())).first,
+        out.origin.push_back(p);
+      id = it->second;
+    } else {
+      auto it = id_of_label.find(label[p]);
+      if (it == id_of_label.end())
+        it = id_of_label.emplace(label[p], static_cast<std::uint32_t>(out.origin.size())).first,
+        out.origin.push_back(p);
+      id = it->second;
+    }
+    out.label[p] = id;
+  }
+  out.at_saddle.assign(out.origin.size(), false);
+  out.parent.assign(out.origin.size(), kNone);
+  out.children.assign(out.origin.size(), {});
+  return out;
+}
+
 Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
                     const AnalysisParams& params, const CadParams& cad, PhaseTimes& times) {
   const auto start = std::chrono::steady_clock::now();
   const std::vector<float> smoothed = smoothNormals(graph, normals, cad.smoothing_iterations);
-  const std::vector<float> phi = ridgeDistance(graph, ridgePoints(graph, smoothed, cad.ridge_angle));
+  const std::vector<bool> ridge = ridgePoints(graph, smoothed, cad.ridge_angle);
+  const std::vector<float> phi = ridgeDistance(graph, ridge);
   CsrGraph transformed = transformGraph(graph, phi, cad.shrink, cad.stretch);
   times.knn += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   Analysis a = analyze(std::move(transformed), params, times);
   const auto before_angles = std::chrono::steady_clock::now();
   a.cad = true;
+  // Faces end at ridges: no supernode crosses one (Sec. 7, "ridges to feature boundaries").
+  const std::size_t min_points = static_cast<std::size_t>(
+      std::ceil(params.refinement.area_fraction * double(graph.numVertices())));
+  a.supernodes = splitAtRidges(graph, xyz, ridge, a.supernodes.label, min_points);
+  a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
+  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
   a.face_angle = cad.face_angle;
   a.face_angles = faceContactAngles(a.graph, xyz, a.supernodes.label);
   times.refinement +=

@@ -42,6 +42,20 @@ std::vector<bool> ridgePoints(const CsrGraph& graph, const std::vector<float>& n
  * point; +infinity in a component without ridge points. */
 std::vector<float> ridgeDistance(const CsrGraph& graph, const std::vector<bool>& ridge);
 
+/** \brief Supernodes that do not cross ridges. The points of each supernode off the ridges
+ * fall into connected regions; a region of fewer than min_points points joins the neighbouring
+ * region (off the ridges) it shares most kNN edges with, smallest first (one with no such
+ * neighbour is dissolved like ridge points); each remaining region is a supernode. Each ridge
+ * point joins, among the regions with off-ridge points within four
+ * kNN steps, the one whose plane fitted to those points passes nearest to it (the nearest region
+ * on the graph when no plane can be fitted). The saddle relations are dropped (the CAD graph
+ * of supernodes does not use them).
+ * \param[in] graph  the kNN graph with Euclidean lengths
+ * \param[in] xyz    3 floats per vertex
+ * \param[in] label  per vertex, its supernode */
+Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
+                         const std::vector<std::uint32_t>& label, std::size_t min_points);
+
 /** \brief The transformed graph of Sec. 7. An edge (p, q) of length d gets the length
  *   d * (shrink + (stretch - shrink) * a),  a = |phi(p) - phi(q)| / d in [0, 1],
  * with phi the ridge distance: an edge between points equidistant from a ridge (a = 0) is
