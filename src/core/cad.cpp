@@ -73,8 +73,8 @@ std::vector<bool> ridgePoints(const CsrGraph& graph, const std::vector<float>& n
       const float* nq = &normals[3 * graph.targets[e]];
       if (nq[0] == 0.0f && nq[1] == 0.0f && nq[2] == 0.0f)
         continue;
-      const double c = std::abs(double(np[0]) * nq[0] + double(np[1]) * nq[1] +
-                                double(np[2]) * nq[2]);
+      const double c =
+          std::abs(double(np[0]) * nq[0] + double(np[1]) * nq[1] + double(np[2]) * nq[2]);
       sum += std::acos(std::min(c, 1.0)); // unoriented: the angle is at most 90 degrees
       ++count;
     }

@@ -37,8 +37,8 @@ std::vector<Triangle> extrude(const std::vector<Eigen::Vector2d>& polygon,
   auto at = [](const Eigen::Vector2d& p, double z) { return Eigen::Vector3d(p.x(), p.y(), z); };
   for (const auto& t : tris) {
     out.push_back({at(polygon[t[0]], 0), at(polygon[t[1]], 0), at(polygon[t[2]], 0), 0});
-    out.push_back({at(polygon[t[0]], height), at(polygon[t[1]], height), at(polygon[t[2]], height),
-                   1});
+    out.push_back(
+        {at(polygon[t[0]], height), at(polygon[t[1]], height), at(polygon[t[2]], height), 1});
   }
   const int m = static_cast<int>(polygon.size());
   for (int i = 0; i < m; ++i) {

@@ -48,9 +48,8 @@ LabeledShape makeCadShape(const std::string& name, std::size_t n, std::uint64_t 
 
 /** \brief The same cloud with the exact normal of each point's face (before noise, so a noisy
  * cloud gets its faces' clean normals), for the path that reads normals from the input. */
-pcl::PointCloud<pcl::PointNormal>::Ptr withFaceNormals(const std::string& name,
-                                                       std::size_t n, std::uint64_t seed,
-                                                       double noise = 0.0);
+pcl::PointCloud<pcl::PointNormal>::Ptr withFaceNormals(const std::string& name, std::size_t n,
+                                                       std::uint64_t seed, double noise = 0.0);
 
 } // namespace test
 } // namespace pcl_ncut_seg
