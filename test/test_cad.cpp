@@ -289,6 +289,40 @@ TEST(CadMode, NormalsFromTheInputAreUsed) {
   EXPECT_EQ(segmentCad<pcl::PointNormal>(missing), segmentCad<pcl::PointXYZ>(shape.cloud));
 }
 
+TEST(CadMode, ResultDoesNotDependOnTheNumberOfThreads) {
+  const LabeledShape shape = makeCadShape("l_block", 8000, 3, 0.005);
+  std::vector<std::vector<int>> results;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+    seg.setInputCloud(shape.cloud);
+    seg.setCadMode(true);
+    seg.setNumberOfThreads(threads);
+    std::vector<pcl::PointIndices> segments;
+    seg.extract(segments);
+    results.push_back(segmentsToLabels(segments, shape.cloud->size()));
+  }
+  EXPECT_EQ(results[0], results[1]);
+  EXPECT_EQ(results[0], results[2]);
+}
+
+TEST(CadMode, SwitchingTheModeRecomputesTheAnalysis) {
+  const LabeledShape shape = makeCadShape("cube", 6000, 1, 0.0);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(shape.cloud);
+  std::vector<pcl::PointIndices> segments;
+  seg.setCadMode(true);
+  seg.extract(segments);
+  ASSERT_NE(seg.getAnalysis(), nullptr);
+  EXPECT_TRUE(seg.getAnalysis()->cad);
+  const std::vector<int> cad = segmentsToLabels(segments, shape.cloud->size());
+  seg.setCadMode(false);
+  seg.extract(segments);
+  EXPECT_FALSE(seg.getAnalysis()->cad);
+  seg.setCadMode(true);
+  seg.extract(segments);
+  EXPECT_EQ(segmentsToLabels(segments, shape.cloud->size()), cad);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The tool and a real part
 

@@ -128,12 +128,15 @@ CsrGraph transformGraph(const CsrGraph& graph, const std::vector<float>& phi, fl
 }
 
 std::map<std::pair<std::uint32_t, std::uint32_t>, double>
-faceContactAngles(const CsrGraph& graph, const float* xyz,
-                  const std::vector<std::uint32_t>& label) {
+faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label,
+                  const std::vector<bool>& ridge) {
   const std::size_t n = graph.numVertices();
   // The face normal of p's supernode at p: a plane fitted to the points of the same supernode
-  // within two kNN steps. Only points on a contact need it. Zero when the fit is not planar
-  // (fewer than 3 points, or collinear ones).
+  // off the ridges within kFitHops kNN steps (a ridge point may lie on the other face). Only
+  // points on a contact need it. Zero when the fit is not planar (fewer than kMinFit points,
+  // or collinear ones).
+  constexpr std::size_t kFitHops = 3, kMinFit = 6;
+  std::vector<std::uint32_t> fit;
   std::vector<float> normal(3 * n, 0.0f);
   std::vector<char> done(n, 0);
   std::vector<std::uint32_t> mark(n, std::numeric_limits<std::uint32_t>::max());
@@ -145,7 +148,7 @@ faceContactAngles(const CsrGraph& graph, const float* xyz,
     ring.clear();
     ring.push_back(p);
     mark[p] = p;
-    for (std::size_t step = 0, begin = 0; step < 2; ++step) {
+    for (std::size_t step = 0, begin = 0; step < kFitHops; ++step) {
       const std::size_t end = ring.size();
       for (std::size_t i = begin; i < end; ++i) {
         const std::uint32_t v = ring[i];
@@ -159,14 +162,18 @@ faceContactAngles(const CsrGraph& graph, const float* xyz,
       }
       begin = end;
     }
-    if (ring.size() < 3)
+    fit.clear();
+    for (std::uint32_t v : ring)
+      if (ridge.empty() || !ridge[v])
+        fit.push_back(v);
+    if (fit.size() < kMinFit)
       return;
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (std::uint32_t v : ring)
+    for (std::uint32_t v : fit)
       mean += Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    mean /= double(ring.size());
+    mean /= double(fit.size());
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (std::uint32_t v : ring) {
+    for (std::uint32_t v : fit) {
       const Eigen::Vector3d d = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - mean;
       cov += d * d.transpose();
     }
@@ -179,13 +186,13 @@ faceContactAngles(const CsrGraph& graph, const float* xyz,
       normal[3 * p + d] = static_cast<float>(v[d]);
   };
 
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<double, std::size_t>> sums;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> samples;
   for (std::uint32_t p = 0; p < n; ++p)
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
       const std::uint32_t q = graph.targets[e];
       if (label[q] <= label[p])
         continue; // each contact edge once, from its smaller label's side
-      auto& entry = sums[{label[p], label[q]}];
+      auto& entry = samples[{label[p], label[q]}];
       faceNormal(p);
       faceNormal(q);
       const float* a = &normal[3 * p];
@@ -194,12 +201,23 @@ faceContactAngles(const CsrGraph& graph, const float* xyz,
           (b[0] == 0.0f && b[1] == 0.0f && b[2] == 0.0f))
         continue;
       const double c = std::abs(double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]);
-      entry.first += std::acos(std::min(c, 1.0)) / kDegree;
-      ++entry.second;
+      entry.push_back(std::acos(std::min(c, 1.0)) / kDegree);
     }
+  // The median: a few contact edges through points that belong to neither face must not
+  // decide.
   std::map<std::pair<std::uint32_t, std::uint32_t>, double> angles;
-  for (const auto& [key, sum] : sums)
-    angles[key] = sum.second > 0 ? sum.first / double(sum.second) : 90.0;
+  for (auto& [key, values] : samples) {
+    if (values.empty()) {
+      angles[key] = 90.0;
+      continue;
+    }
+    const std::size_t mid = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + mid, values.end());
+    double median = values[mid];
+    if (values.size() % 2 == 0)
+      median = 0.5 * (median + *std::max_element(values.begin(), values.begin() + mid));
+    angles[key] = median;
+  }
   return angles;
 }
 
@@ -294,10 +312,12 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
     members[best].insert(members[best].end(), members[i].begin(), members[i].end());
     members[i].clear();
   }
-  // A small region enclosed by ridges is dissolved like ridge points.
+  // A region enclosed by ridges and smaller than two kNN neighbourhoods (twice the mean |N(p)|)
+  // is a gap in a ridge rather than a face: it is dissolved like ridge points.
+  const double tiny = n > 0 ? 2.0 * double(graph.numDirectedEdges()) / double(n) : 0.0;
   std::vector<bool> loose(ridge);
   for (std::uint32_t p = 0; p < n; ++p)
-    if (region[p] != kNone && total[find(region[p])] < min_points)
+    if (region[p] != kNone && total[find(region[p])] < tiny)
       loose[p] = true;
   // Ridge points join the nearest region on the graph (multi-source Dijkstra).
   std::vector<float> dist(n, std::numeric_limits<float>::infinity());
@@ -427,7 +447,7 @@ Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normal
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
   a.face_angle = cad.face_angle;
-  a.face_angles = faceContactAngles(a.graph, xyz, a.supernodes.label);
+  a.face_angles = faceContactAngles(a.graph, xyz, a.supernodes.label, ridge);
   times.refinement +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - before_angles).count();
   return a;

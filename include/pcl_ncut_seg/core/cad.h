@@ -44,15 +44,14 @@ std::vector<float> ridgeDistance(const CsrGraph& graph, const std::vector<bool>&
 
 /** \brief Supernodes that do not cross ridges. The points of each supernode off the ridges
  * fall into connected regions; a region of fewer than min_points points joins the neighbouring
- * region (off the ridges) it shares most kNN edges with, smallest first (one with no such
- * neighbour is dissolved like ridge points); each remaining region is a supernode. Each ridge
- * point joins, among the regions with off-ridge points within four
- * kNN steps, the one whose plane fitted to those points passes nearest to it (the nearest region
- * on the graph when no plane can be fitted). The saddle relations are dropped (the CAD graph
- * of supernodes does not use them).
- * \param[in] graph  the kNN graph with Euclidean lengths
- * \param[in] xyz    3 floats per vertex
- * \param[in] label  per vertex, its supernode */
+ * region (off the ridges) it shares most kNN edges with, smallest first. A region with no such
+ * neighbour that holds fewer than twice the mean |N(p)| points is dissolved like ridge points; each
+ * remaining region is a supernode. Each ridge point joins, among the regions with at least six
+ * off-ridge points within four kNN steps, the one whose plane fitted to those points passes nearest
+ * to it (the nearest region on the graph when no plane can be fitted). The saddle relations are
+ * dropped (the CAD graph of supernodes does not use them). \param[in] graph  the kNN graph with
+ * Euclidean lengths \param[in] xyz    3 floats per vertex \param[in] label  per vertex, its
+ * supernode */
 Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
                          const std::vector<std::uint32_t>& label, std::size_t min_points);
 
@@ -65,16 +64,18 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
 CsrGraph transformGraph(const CsrGraph& graph, const std::vector<float>& phi, float shrink,
                         float stretch);
 
-/** \brief Per pair of supernodes that touch in the kNN graph, the mean angle in degrees between
+/** \brief Per pair of supernodes that touch in the kNN graph, the median angle in degrees between
  * the orientations of the faces they represent at their contact. For each kNN edge (p, q) with
  * p in s_i and q in s_j, the face normal of s_i at p is fitted (least squares) to the points of
- * s_i within two kNN steps of p, likewise for s_j at q; the angle between the two (unoriented)
- * normals is averaged over the edges where both fits are planar. A pair with no such edge gets
- * 90 degrees. Keyed (min, max), i != j.
+ * s_i off the ridges within three kNN steps of p (through s_i), at least six, likewise for s_j
+ * at q; the median of the angle between the two (unoriented) normals is taken over the edges
+ * where both fits are planar. A pair with no such edge gets 90 degrees. Keyed (min, max), i != j.
  * \param[in] xyz    3 floats per vertex
- * \param[in] label  per vertex, its supernode */
+ * \param[in] label  per vertex, its supernode
+ * \param[in] ridge  per vertex, whether it is a ridge point (empty: none is) */
 std::map<std::pair<std::uint32_t, std::uint32_t>, double>
-faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label);
+faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label,
+                  const std::vector<bool>& ridge = {});
 
 /** \brief G_s in CAD mode (Sec. 7 after Sec. 5.1): r_i - m_i with the weight of eq. (7); m_i -
  * m_j for every pair of supernodes touching in the kNN graph, weighted by the similarity of
