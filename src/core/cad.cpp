@@ -235,9 +235,21 @@ WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const Feature
   // Sec. 7: supernodes are similar when the faces they represent have the same orientation
   // where they meet; every touching pair gets an edge, so a face split into several
   // supernodes is held together whether or not they met at a saddle.
+  std::vector<double> boundary(l, 0.0); // conn of each supernode with all others
+  for (const auto& [key, value] : conn)
+    if (key.first != key.second) {
+      boundary[key.first] += value;
+      boundary[key.second] += value;
+    }
   for (const auto& [key, theta] : face_angles) {
     const double x = theta / face_angle;
-    g.edges.push_back({l + key.first, l + key.second, std::max(std::exp(-x * x), kMinWeight)});
+    // ... scaled by the share of the smaller boundary they have in common (conn of eq. 8), so
+    // that a short contact through a few misplaced points cannot glue two faces.
+    auto it = conn.find(key);
+    const double shared = it == conn.end() ? 0.0 : it->second;
+    const double smaller = std::min(boundary[key.first], boundary[key.second]);
+    const double w = std::exp(-x * x) * (smaller > 0.0 ? std::min(1.0, shared / smaller) : 0.0);
+    g.edges.push_back({l + key.first, l + key.second, std::max(w, kMinWeight)});
   }
   return g;
 }

@@ -79,7 +79,9 @@ faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std
 
 /** \brief G_s in CAD mode (Sec. 7 after Sec. 5.1): r_i - m_i with the weight of eq. (7); m_i -
  * m_j for every pair of supernodes touching in the kNN graph, weighted by the similarity of
- * their faces' orientations exp(-(theta_ij / face_angle)^2) (theta_ij from faceContactAngles).
+ * their faces' orientations exp(-(theta_ij / face_angle)^2) (theta_ij from faceContactAngles)
+ * times the share of their contact in the smaller of their boundaries,
+ * conn(s_i, s_j) / min(sum_k conn(s_i, s_k), sum_k conn(s_j, s_k)) over k != i, j resp.
  */
 WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
                                      const Connectivity& conn, const Connectivity& face_angles,
