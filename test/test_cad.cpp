@@ -168,11 +168,33 @@ TEST(CadMode, SetterValidatesAndInvalidates) {
 struct CadCase {
   std::string shape;
   std::size_t n;
-  double noise; ///< standard deviation per coordinate, in model units (parts are about 1 unit)
+  /// Standard deviation per coordinate, in model units (parts are about 1 unit); the mean
+  /// nearest-neighbour spacing is 0.010-0.016 at these n, so 0.005 is 0.3-0.5 spacings and
+  /// 0.01 0.6-0.9.
+  double noise;
 };
 
 std::string caseName(const CadCase& c) {
-  return c.shape + (c.noise > 0 ? "_noisy" : "_clean");
+  return c.shape + (c.noise == 0.0 ? "_clean" : c.noise < 0.01 ? "_noisy" : "_heavy_noise");
+}
+
+/** \brief Cases that miss the bar today, with the reason (docs/cad.md, "Known limitations").
+ * They still run and report; below the bar they are skipped with the measured value instead of
+ * failing. Remove an entry once its case passes. */
+const char* knownLimitation(const std::string& name) {
+  static const std::map<std::string, const char*> known = {
+      {"triangular_prism_heavy_noise",
+       "noise of 0.7 point spacings blurs the ridges of the 60-degree edges: ridge points are "
+       "misassigned along them"},
+      {"l_block_heavy_noise",
+       "noise of 0.8 point spacings widens the ridge bands: the smallest side faces lose over "
+       "10% of their points to their neighbours"},
+      {"cylinder_heavy_noise",
+       "noise of 0.7 point spacings: the ridge band around the caps widens and its points are "
+       "split unevenly between the cap and the side"},
+  };
+  const auto it = known.find(name);
+  return it == known.end() ? nullptr : it->second;
 }
 
 /** \brief Segment a cloud in CAD mode with the defaults. */
@@ -233,8 +255,13 @@ TEST_P(CadShapes, EachFaceIsOneSegment) {
   const double ri = randIndex(labels, shape.labels);
   std::cout << "[ measured ] " << caseName(c) << ": n " << c.n << ", faces " << shape.num_parts
             << ", supernodes l " << l << ", segments t " << t << ", Rand index " << ri << std::endl;
+  const std::string faces = eachFaceHasItsSegment(labels, shape.labels, shape.num_parts, 0.9);
+  if (const char* why = knownLimitation(caseName(c)))
+    if (ri < kRandBar || !faces.empty())
+      GTEST_SKIP() << "known limitation, measured Rand index " << ri << " (bar " << kRandBar << ")"
+                   << (faces.empty() ? "" : ", " + faces) << ": " << why;
   EXPECT_GE(ri, kRandBar);
-  EXPECT_EQ(eachFaceHasItsSegment(labels, shape.labels, shape.num_parts, 0.9), "");
+  EXPECT_EQ(faces, "");
 }
 
 TEST_P(CadShapes, RigidMotionDoesNotChangeTheResult) {
@@ -260,7 +287,10 @@ INSTANTIATE_TEST_SUITE_P(
                       CadCase{"hexagonal_prism", 8000, 0.0},
                       CadCase{"hexagonal_prism", 8000, 0.005}, CadCase{"l_block", 8000, 0.0},
                       CadCase{"l_block", 8000, 0.005}, CadCase{"cylinder", 6000, 0.0},
-                      CadCase{"cylinder", 6000, 0.005}),
+                      CadCase{"cylinder", 6000, 0.005}, CadCase{"cube", 6000, 0.01},
+                      CadCase{"triangular_prism", 6000, 0.01},
+                      CadCase{"hexagonal_prism", 6000, 0.01}, CadCase{"l_block", 6000, 0.01},
+                      CadCase{"cylinder", 6000, 0.01}),
     [](const ::testing::TestParamInfo<CadCase>& info) { return caseName(info.param); });
 
 TEST(CadMode, NormalsFromTheInputAreUsed) {
