@@ -178,6 +178,11 @@ std::string caseName(const CadCase& c) {
   return c.shape + (c.noise == 0.0 ? "_clean" : c.noise < 0.01 ? "_noisy" : "_heavy_noise");
 }
 
+/** \brief gtest prints a case by its name. */
+void PrintTo(const CadCase& c, std::ostream* os) {
+  *os << caseName(c) << " (n " << c.n << ", noise " << c.noise << ")";
+}
+
 /** \brief Cases that miss the bar today, with the reason (docs/cad.md, "Known limitations").
  * They still run and report; below the bar they are skipped with the measured value instead of
  * failing. Remove an entry once its case passes. */
