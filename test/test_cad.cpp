@@ -324,6 +324,34 @@ TEST(CadMode, NormalsFromTheInputAreUsed) {
   EXPECT_EQ(segmentCad<pcl::PointNormal>(missing), segmentCad<pcl::PointXYZ>(shape.cloud));
 }
 
+TEST(CadMode, DegenerateInputsGiveAPartitionWithoutCrashing) {
+  // One point, two, three; a straight line (no normal can be fitted); a flat square (no ridge:
+  // every edge is shrunk alike); duplicated points.
+  std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> clouds;
+  for (std::size_t n : {1u, 2u, 3u}) {
+    clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+    for (std::size_t i = 0; i < n; ++i)
+      clouds.back()->push_back(pcl::PointXYZ(float(i), 0.5f * float(i * i), 0.0f));
+  }
+  clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+  for (int i = 0; i < 200; ++i)
+    clouds.back()->push_back(pcl::PointXYZ(0.01f * float(i), 0.0f, 0.0f));
+  clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      clouds.back()->push_back(pcl::PointXYZ(0.025f * float(i), 0.025f * float(j), 0.0f));
+  clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+  for (int i = 0; i < 300; ++i)
+    clouds.back()->push_back(pcl::PointXYZ(float(i % 3), float(i % 5), 1.0f));
+  for (std::size_t c = 0; c < clouds.size(); ++c) {
+    std::size_t t = 0;
+    const std::vector<int> labels = segmentCad<pcl::PointXYZ>(clouds[c], &t);
+    EXPECT_GE(t, 1u) << "cloud " << c;
+    for (int label : labels)
+      EXPECT_GE(label, 0) << "cloud " << c << ": every point in a segment";
+  }
+}
+
 TEST(CadMode, ResultDoesNotDependOnTheNumberOfThreads) {
   const LabeledShape shape = makeCadShape("l_block", 8000, 3, 0.005);
   std::vector<std::vector<int>> results;
