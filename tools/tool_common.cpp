@@ -253,6 +253,11 @@ std::vector<Flag> algorithmFlags() {
               num(d.getNumberOfThreads()), 0),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernode trees that meet at no saddle"),
+      switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
+                         "ridges"),
+      realFlag("-face_angle", "DEG",
+               "CAD mode: angle scale of the face-orientation similarity, in (0, 90]",
+               num(d.getFaceAngle()), 0, 90, true),
   };
 }
 
@@ -299,6 +304,10 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setNumberOfSplitValues(static_cast<int>(flags.integer("-splits")));
   if (flags.has("-threads"))
     seg.setNumberOfThreads(static_cast<unsigned>(flags.integer("-threads")));
+  if (flags.has("-cad"))
+    seg.setCadMode(true);
+  if (flags.has("-face_angle"))
+    seg.setFaceAngle(static_cast<float>(flags.real("-face_angle")));
   if (flags.has("-paper")) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);

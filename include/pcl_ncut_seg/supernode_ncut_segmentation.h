@@ -14,6 +14,7 @@
 #include <pcl/PointIndices.h>
 #include <pcl/search/search.h>
 
+#include <pcl_ncut_seg/core/cad.h>
 #include <pcl_ncut_seg/core/pipeline.h>
 
 #include <functional>
@@ -132,6 +133,19 @@ public:
   void setConnectAdjacentTrees(bool connect);
   bool getConnectAdjacentTrees() const { return similarity_.connect_adjacent_trees; }
 
+  /** \brief CAD mode (Sec. 7): segment a mechanical part into its faces, separated at its
+   * ridges, instead of into elongated parts (default false). Normals come from the input when
+   * the point type has them (finite ones), else from PCL's normal estimation over the kNN
+   * neighbourhoods; see docs/cad.md. Changing it invalidates the expensive stage. */
+  void setCadMode(bool cad);
+  bool getCadMode() const { return cad_mode_; }
+
+  /** \brief CAD mode: angle scale in degrees, in (0, 90], of the similarity of two touching
+   * supernodes by the orientation of their faces, exp(-(angle / face_angle)^2) (default 15).
+   * Faces that meet at a smaller angle than about this one tend to stay together. */
+  void setFaceAngle(float degrees);
+  float getFaceAngle() const { return cad_.face_angle; }
+
   /** \brief Threads for the centrality phase; 0 (default) uses all cores. Output does not
    * depend on it. */
   void setNumberOfThreads(unsigned threads);
@@ -198,6 +212,8 @@ protected:
   float area_fraction_ = 0.01f;
   float height_fraction_ = 0.01f;
   unsigned num_threads_ = 0;
+  bool cad_mode_ = false;
+  pcl_ncut_seg::CadParams cad_;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;
   std::function<void(const char*, double)> progress_;

@@ -1,5 +1,7 @@
 #include <pcl_ncut_seg/core/pipeline.h>
 
+#include <pcl_ncut_seg/core/cad.h>
+
 #include <chrono>
 
 namespace pcl_ncut_seg {
@@ -54,7 +56,11 @@ CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, cons
   CutResult r;
   Stopwatch clock;
   const std::size_t l = analysis.supernodes.size();
-  r.graph = buildSupernodeGraph(analysis.supernodes, analysis.stats, analysis.conn, similarity);
+  r.graph = analysis.cad ? buildCadSupernodeGraph(analysis.supernodes, analysis.stats,
+                                                  analysis.conn, analysis.face_angles, similarity,
+                                                  analysis.face_angle)
+                         : buildSupernodeGraph(analysis.supernodes, analysis.stats, analysis.conn,
+                                               similarity);
   r.hierarchy = buildHierarchy(r.graph, l, params);
   times.hierarchy = clock.lap();
 

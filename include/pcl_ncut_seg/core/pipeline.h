@@ -45,6 +45,9 @@ struct Analysis {
   Supernodes supernodes;     ///< after refinement (Sec. 4.3)
   FeatureStats stats;        ///< of the refined supernodes
   Connectivity conn;         ///< eq. (8) over the refined supernodes
+  bool cad = false;          ///< CAD mode (Sec. 7): built by analyzeCad() in core/cad.h
+  Connectivity face_angles;  ///< CAD mode: angle (degrees) between touching supernodes' faces
+  double face_angle = 15.0;  ///< CAD mode: angle scale of the face similarity
 };
 
 /** \brief Run Secs. 4.1-4.3 on a prepared kNN graph. Times go to times.centrality etc. */

@@ -8,6 +8,7 @@
 
 #include <pcl/common/point_tests.h>
 #include <pcl/console/print.h>
+#include <pcl/features/normal_3d.h>
 #include <pcl/search/kdtree.h>
 
 #include <algorithm>
@@ -199,6 +200,45 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfThreads(unsigned threads
   num_threads_ = threads; // output does not depend on it, so nothing to invalidate
 }
 
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::setCadMode(bool cad) {
+  if (cad != cad_mode_)
+    invalidate();
+  cad_mode_ = cad;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setFaceAngle(float degrees) {
+  if (!(degrees > 0.0f && degrees <= 90.0f)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setFaceAngle] angle must be in (0, 90] "
+              "degrees, got %g; keeping %g.\n",
+              degrees, cad_.face_angle);
+    return;
+  }
+  if (degrees != cad_.face_angle)
+    invalidate();
+  cad_.face_angle = degrees;
+}
+
+namespace pcl {
+namespace ncut_detail {
+/// CAD mode: the input's own normal when the point type has one and it is finite and non-zero.
+template <typename PointT>
+bool inputNormal(const PointT& p, float* n) {
+  if constexpr (pcl::traits::has_normal<PointT>::value) {
+    n[0] = p.normal_x;
+    n[1] = p.normal_y;
+    n[2] = p.normal_z;
+    return std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]) &&
+           n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > 0.0f;
+  } else {
+    (void)p;
+    (void)n;
+    return false;
+  }
+}
+} // namespace ncut_detail
+} // namespace pcl
+
 template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
   const auto start = std::chrono::steady_clock::now();
   // Valid points: in range, finite, each once; sorted so that graph order is cloud order.
@@ -298,8 +338,33 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   params.refinement.height_fraction = height_fraction_;
   params.num_threads = num_threads_;
   params.progress = progress_;
-  analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
-      pcl_ncut_seg::analyze(std::move(graph), params, times_));
+  if (cad_mode_) {
+    // Sec. 7: approximate normals, from the input or fitted by PCL over p and N(p); their time
+    // counts as kNN time, as in the paper's Table 1.
+    const auto normals_start = std::chrono::steady_clock::now();
+    std::vector<float> normals(3 * n, std::numeric_limits<float>::quiet_NaN());
+    pcl::Indices neighbourhood;
+    Eigen::Vector4f plane;
+    float curvature;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (ncut_detail::inputNormal((*input_)[valid[i]], &normals[3 * i]))
+        continue;
+      neighbourhood.assign(1, valid[i]);
+      for (std::uint32_t e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
+        neighbourhood.push_back(valid[graph.targets[e]]);
+      if (neighbourhood.size() >= 3 &&
+          pcl::computePointNormal(*input_, neighbourhood, plane, curvature))
+        for (int d = 0; d < 3; ++d)
+          normals[3 * i + d] = plane[d];
+    }
+    times_.knn +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - normals_start).count();
+    analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
+        pcl_ncut_seg::analyzeCad(graph, xyz.data(), normals.data(), params, cad_, times_));
+  } else {
+    analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
+        pcl_ncut_seg::analyze(std::move(graph), params, times_));
+  }
   point_index_ = std::move(valid);
   return true;
 }

