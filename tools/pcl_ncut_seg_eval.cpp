@@ -47,6 +47,7 @@ struct Options {
   std::vector<std::string> modes = {"auto", "given"};
   std::vector<int> ids;          ///< empty: every off/<id>.off
   std::vector<double> thresholds; ///< auto mode; empty: the segmenter's default
+  std::vector<double> fractions;  ///< auto mode, min segment fractions; empty: the default
   unsigned threads = 1;
   bool quiet = false;
   // Segmenter settings; negative / empty = the library's default.
@@ -71,6 +72,8 @@ void printHelp() {
          "  -ids LIST         model ids and ranges, e.g. 1-3,181 (default: every off/<id>.off)\n"
          "  -thresholds LIST  NCut thresholds for 'ours' in auto mode, each its own row\n"
          "                    (default: the library's default)\n"
+         "  -fractions LIST   minimum segment fractions for 'ours' in auto mode, each its own\n"
+         "                    row (with every threshold; default: the library's default)\n"
          "  -threads N        threads for the centrality phase (default 1)\n"
          "  -k K -crossing F -area F -height F -beta B -alpha1 A -alpha2 A\n"
          "                    segmenter settings (default: the library's defaults)\n"
@@ -151,6 +154,9 @@ Options parseOptions(int argc, char** argv) {
     } else if (a == "-thresholds") {
       for (const auto& item : splitList(v))
         o.thresholds.push_back(parseNumber(a, item));
+    } else if (a == "-fractions") {
+      for (const auto& item : splitList(v))
+        o.fractions.push_back(parseNumber(a, item));
     } else if (a == "-threads") {
       o.threads = static_cast<unsigned>(parseNumber(a, v));
     } else if (a == "-k") {
@@ -338,12 +344,26 @@ int main(int argc, char** argv) {
     while (in >> v)
       given_count.push_back(v);
   }
-  std::vector<std::string> ours_names; // method name per auto threshold
-  std::vector<double> thresholds = opt.thresholds;
-  if (thresholds.empty())
-    thresholds.push_back(Segmenter().getThreshold());
-  for (double t : thresholds)
-    ours_names.push_back(opt.thresholds.size() > 1 ? "ours t=" + fmt(t, 4) : "ours");
+  // Auto-mode settings of 'ours': every threshold with every minimum segment fraction.
+  std::vector<std::pair<double, double>> settings;
+  std::vector<std::string> ours_names;
+  {
+    std::vector<double> thresholds = opt.thresholds, fractions = opt.fractions;
+    if (thresholds.empty())
+      thresholds.push_back(Segmenter().getThreshold());
+    if (fractions.empty())
+      fractions.push_back(Segmenter().getMinSegmentFraction());
+    for (double t : thresholds)
+      for (double f : fractions) {
+        settings.emplace_back(t, f);
+        std::string name = "ours";
+        if (thresholds.size() > 1)
+          name += " t=" + fmt(t, 4);
+        if (fractions.size() > 1)
+          name += " f=" + fmt(f, 3);
+        ours_names.push_back(name);
+      }
+  }
 
   std::vector<Row> rows;
   for (const int id : ids) {
@@ -405,8 +425,11 @@ int main(int argc, char** argv) {
       seg.setInputCloud(cloud);
       std::vector<pcl::PointIndices> segments;
       double analysis_seconds = -1;
-      for (std::size_t t = 0; t < thresholds.size() && (hasMode("auto") || t == 0); ++t) {
-        seg.setThreshold(thresholds[t]);
+      for (std::size_t t = 0; t < settings.size() && (hasMode("auto") || t == 0); ++t) {
+        seg.setThreshold(settings[t].first);
+        seg.setMinSegmentFraction(settings[t].second);
+        if (seg.getMinSegmentFraction() != settings[t].second)
+          fail("-fractions: a fraction is outside [0, 0.5]");
         const auto start = std::chrono::steady_clock::now();
         seg.extract(segments);
         const double secs = seconds(start);
@@ -436,8 +459,12 @@ int main(int argc, char** argv) {
         continue;
       std::vector<int> labels;
       const auto start = std::chrono::steady_clock::now();
-      if (!pcl_ncut_seg::segmentWithPclPeer(xyz, std::string(peer) == "cpc",
-                                            pcl_ncut_seg::PeerParams(), labels, &error))
+      // CPC reports every failed RANSAC draw as an error; they are part of how it works.
+      pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+      const bool ok = pcl_ncut_seg::segmentWithPclPeer(xyz, std::string(peer) == "cpc",
+                                                       pcl_ncut_seg::PeerParams(), labels, &error);
+      pcl::console::setVerbosityLevel(pcl::console::L_WARN);
+      if (!ok)
         fail(std::string(peer) + " on model " + name + ": " + error);
       addBoth(score(peer, labels, seconds(start)));
     }

@@ -110,6 +110,13 @@ public:
   void setThreshold(double threshold);
   double getThreshold() const { return cut_.threshold; }
 
+  /** \brief With the threshold: a part is bisected only if each side keeps at least this
+   * fraction of the total feature area, in [0, 0.5] (0 follows the paper). Stops the cut from
+   * chipping small pieces off shapes without elongated parts. Ignored with a number of
+   * segments. */
+  void setMinSegmentFraction(double fraction);
+  double getMinSegmentFraction() const { return cut_.min_segment_fraction; }
+
   /** \brief Ask for this many segments (> 0); 0 (default) uses the threshold instead. The
    * hierarchy is refined by splitting the part with the lowest NCut first. Fewer segments
    * come out when no more parts can be split. */

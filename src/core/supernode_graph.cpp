@@ -85,6 +85,10 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   for (std::uint32_t s = 0; s < l; ++s)
     width[s] = std::max(static_cast<double>(stats.width[s]) / width_unit, 1e-300);
 
+  g.mass.assign(2 * l, 0.0);
+  for (std::uint32_t s = 0; s < l; ++s)
+    g.mass[l + s] = stats.area[s];
+
   // eq. (7): r_i - m_i
   for (std::uint32_t i = 0; i < l; ++i) {
     const double ratio = max_self > 0.0 ? lookup(conn, i, i) / max_self : 0.0;

@@ -50,6 +50,9 @@ struct CutParams {
   double threshold = 0.02; ///< split while the best NCut <= threshold
   int num_segments = 0;    ///< > 0: instead split the lowest-NCut leaf until this many leaves
   int num_splits = 100;    ///< uniform split values tried per bisection
+  /// Threshold mode only: a split is accepted only if each side holds at least this fraction
+  /// of the total mass (WeightedGraph::mass, feature area); 0 = the paper (no such rule).
+  double min_segment_fraction = 0.0;
 };
 
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,

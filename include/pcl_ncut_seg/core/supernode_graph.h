@@ -29,6 +29,9 @@ struct WeightedGraph {
     double w;
   };
   std::vector<Edge> edges;
+  /// Optional mass of each vertex (empty: none): the feature area f_a of a member vertex's
+  /// supernode, 0 for representative vertices. Used by CutParams::min_segment_fraction.
+  std::vector<double> mass;
 };
 
 struct SimilarityParams {

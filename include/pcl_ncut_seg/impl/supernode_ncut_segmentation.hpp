@@ -163,6 +163,17 @@ void pcl::SupernodeNCutSegmentation<PointT>::setThreshold(double threshold) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setMinSegmentFraction(double fraction) {
+  if (!(fraction >= 0.0 && fraction <= 0.5)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setMinSegmentFraction] fraction must be in "
+              "[0, 0.5], got %g; keeping %g.\n",
+              fraction, cut_.min_segment_fraction);
+    return;
+  }
+  cut_.min_segment_fraction = fraction;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
   if (segments < 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSegments] segments must be >= 0 "
