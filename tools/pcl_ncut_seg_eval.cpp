@@ -54,6 +54,9 @@ struct Options {
   int k = -1;
   double crossing = -1, area = -1, height = -1, beta = -1, alpha1 = -1, alpha2 = -1;
   bool paper = false;
+  int adjacent = -1; ///< -1: default; 0/1: setConnectAllAdjacent
+  int gap = -1;      ///< -1: default; 0/1: setLargestGapStopping
+  int max_segments = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -77,6 +80,9 @@ void printHelp() {
          "  -threads N        threads for the centrality phase (default 1)\n"
          "  -k K -crossing F -area F -height F -beta B -alpha1 A -alpha2 A\n"
          "                    segmenter settings (default: the library's defaults)\n"
+         "  -adjacent 0|1     setConnectAllAdjacent (default: the library's default)\n"
+         "  -gap 0|1          setLargestGapStopping (default: the library's default)\n"
+         "  -maxseg N         setMaxSegments (default: the library's default)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
 }
@@ -157,6 +163,20 @@ Options parseOptions(int argc, char** argv) {
     } else if (a == "-fractions") {
       for (const auto& item : splitList(v))
         o.fractions.push_back(parseNumber(a, item));
+    } else if (a == "-adjacent") {
+      const double b = parseNumber(a, v);
+      if (b != 0 && b != 1)
+        fail("-adjacent needs 0 or 1");
+      o.adjacent = static_cast<int>(b);
+    } else if (a == "-gap") {
+      const double b = parseNumber(a, v);
+      if (b != 0 && b != 1)
+        fail("-gap needs 0 or 1");
+      o.gap = static_cast<int>(b);
+    } else if (a == "-maxseg") {
+      o.max_segments = static_cast<int>(parseNumber(a, v));
+      if (o.max_segments < 1)
+        fail("-maxseg needs a count >= 1");
     } else if (a == "-threads") {
       o.threads = static_cast<unsigned>(parseNumber(a, v));
     } else if (a == "-k") {
@@ -203,9 +223,18 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setAlpha1(o.alpha1);
   if (o.alpha2 >= 0)
     seg.setAlpha2(o.alpha2);
+  if (o.adjacent >= 0)
+    seg.setConnectAllAdjacent(o.adjacent == 1);
+  if (o.gap >= 0)
+    seg.setLargestGapStopping(o.gap == 1);
+  if (o.max_segments >= 1)
+    seg.setMaxSegments(o.max_segments);
   if (o.paper) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
+    seg.setConnectAllAdjacent(false);
+    seg.setLargestGapStopping(false);
+    seg.setMinSegmentFraction(0.0);
   }
   if ((o.k >= 0 && seg.getNumberOfNeighbours() != o.k) ||
       (o.beta >= 0 && seg.getBeta() != o.beta) || (o.alpha1 >= 0 && seg.getAlpha1() != o.alpha1) ||

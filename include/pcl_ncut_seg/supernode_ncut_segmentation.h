@@ -117,6 +117,18 @@ public:
   void setMinSegmentFraction(double fraction);
   double getMinSegmentFraction() const { return cut_.min_segment_fraction; }
 
+  /** \brief Automatic stopping rule (with the threshold): split the part with the lowest NCut
+   * first while its NCut is at most the threshold and at most getMaxSegments() parts exist,
+   * then keep the splits up to the largest relative jump in NCut (default false: the paper's
+   * recursive bisection while NCut <= threshold). Ignored with a number of segments. */
+  void setLargestGapStopping(bool enable);
+  bool getLargestGapStopping() const { return cut_.largest_gap; }
+
+  /** \brief Upper bound on the number of segments for the largest-gap rule, >= 1 (default
+   * 20). */
+  void setMaxSegments(int segments);
+  int getMaxSegments() const { return cut_.max_segments; }
+
   /** \brief Ask for this many segments (> 0); 0 (default) uses the threshold instead. The
    * hierarchy is refined by splitting the part with the lowest NCut first. Fewer segments
    * come out when no more parts can be split. */
@@ -137,6 +149,13 @@ public:
    * weight of eq. (9) (default true; false follows the paper literally). */
   void setConnectAdjacentTrees(bool connect);
   bool getConnectAdjacentTrees() const { return similarity_.connect_adjacent_trees; }
+
+  /** \brief Join every pair of supernodes that touch in the kNN graph with the weight of
+   * eq. (9), not only those that meet at a saddle (false follows the paper). Holds shapes
+   * without elongated parts together: a supernode is no longer cut off by one small edge.
+   * Implies what setConnectAdjacentTrees(true) does. */
+  void setConnectAllAdjacent(bool connect);
+  bool getConnectAllAdjacent() const { return similarity_.connect_all_adjacent; }
 
   /** \brief Threads for the centrality phase; 0 (default) uses all cores. Output does not
    * depend on it. */

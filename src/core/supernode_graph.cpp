@@ -118,7 +118,15 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
     g.edges.push_back({l + std::min(i, p), l + std::max(i, p), similarity(i, p)});
     tree[find(i)] = find(p);
   }
-  if (params.connect_adjacent_trees) {
+  if (params.connect_all_adjacent) {
+    // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child).
+    for (const auto& [key, value] : conn) {
+      const auto [i, j] = key;
+      if (i == j || sn.parent[i] == j || sn.parent[j] == i)
+        continue;
+      g.edges.push_back({l + i, l + j, similarity(i, j)});
+    }
+  } else if (params.connect_adjacent_trees) {
     // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
     // apart) would be cut at zero cost: join them where they are most connected point-wise.
     std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;

@@ -42,6 +42,11 @@ struct SimilarityParams {
   bool normalize_width = true;
   /// Join member-vertex trees that share no saddle but touch in the kNN graph (see README).
   bool connect_adjacent_trees = true;
+  /// Join every pair of supernodes that touch in the kNN graph with the weight of eq. (9), not
+  /// only pairs that meet at a saddle (false = the paper). Without it the member vertices form
+  /// a tree, and on shapes without elongated parts any supernode can be cut off at the price
+  /// of one small edge.
+  bool connect_all_adjacent = false;
 };
 
 /** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created

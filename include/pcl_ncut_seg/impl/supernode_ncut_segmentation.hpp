@@ -174,6 +174,22 @@ void pcl::SupernodeNCutSegmentation<PointT>::setMinSegmentFraction(double fracti
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setLargestGapStopping(bool enable) {
+  cut_.largest_gap = enable;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setMaxSegments(int segments) {
+  if (segments < 1) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setMaxSegments] segments must be >= 1, got %d; "
+              "keeping %d.\n",
+              segments, cut_.max_segments);
+    return;
+  }
+  cut_.max_segments = segments;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
   if (segments < 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSegments] segments must be >= 0 "
@@ -203,6 +219,11 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNormalizeWidth(bool normalize) {
 template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setConnectAdjacentTrees(bool connect) {
   similarity_.connect_adjacent_trees = connect;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect) {
+  similarity_.connect_all_adjacent = connect;
 }
 
 template <typename PointT>
