@@ -89,6 +89,7 @@ TEST(MinSegmentFraction, RefusesASplitThatLeavesASmallSide) {
   // Two heavy members joined strongly, and a light member hanging by a weak edge.
   const WeightedGraph g = memberGraph(3, {{0, 1, 1.0}, {1, 2, 1e-3}}, {10, 10, 0.5});
   CutParams p;
+  p.largest_gap = false; // the paper's recursive bisection
   p.threshold = 0.1;
   const Hierarchy paper = buildHierarchy(g, 3, p);
   EXPECT_EQ(paper.leaves().size(), 2u) << "the light member is cut off";
@@ -109,9 +110,11 @@ TEST(LargestGap, StopsWhereTheNCutJumps) {
   const WeightedGraph g = memberGraph(
       6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
   CutParams p;
+  p.largest_gap = false;
   p.threshold = 2.0; // the paper's rule splits everything that can be split
   EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 6u);
   p.largest_gap = true;
+  p.gap_floor = 1e-3;
   const Hierarchy h = buildHierarchy(g, 6, p);
   ASSERT_EQ(h.leaves().size(), 3u);
   for (int leaf : h.leaves())

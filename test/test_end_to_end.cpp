@@ -237,9 +237,6 @@ const char* knownLimitation(const std::string& test, const std::string& shape) {
   static const std::map<std::pair<std::string, std::string>, const char*> known = {
       {{"NumberOfSegments", "quadruped"},
        "the tail's supernode grows into the rear of the body: no saddle separates them"},
-      {{"DefaultThreshold", "dumbbell"},
-       "the bar's split (NCut 0.08) is above the default threshold: no single threshold fits "
-       "every shape (automatic stopping is future work)"},
       {{"Density", "quadruped"}, "the tail/body leak (above) depends on the sampling"},
       {{"Density", "dumbbell"},
        "the bar has no centrality maximum: the balls' supernodes meet in its middle"},

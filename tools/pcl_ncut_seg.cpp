@@ -78,8 +78,9 @@ void printHelp(const char* name) {
   print_info("    -beta B       = beta of eq. (7), > 0 (default: %g)\n", d.getBeta());
   print_info("    -alpha1 A     = alpha1 of eq. (9), > 0 (default: %g)\n", d.getAlpha1());
   print_info("    -alpha2 A     = alpha2 of eq. (9), > 0 (default: %g)\n", d.getAlpha2());
-  print_info("    -threshold T  = normalized-cut stopping threshold: a part is bisected while its "
-             "best NCut <= T, >= 0 (default: %g)\n",
+  print_info("    -threshold T  = normalized-cut threshold, >= 0: no split above it; the largest-gap "
+             "rule then keeps the splits up to the largest jump in NCut (with -paper: a part is "
+             "bisected while its best NCut <= T) (default: %g)\n",
              d.getThreshold());
   print_info("    -segments K   = ask for K segments instead of using the threshold, > 0 "
              "(default: off)\n");
@@ -89,7 +90,8 @@ void printHelp(const char* name) {
              "result does not depend on it (default: %u)\n",
              d.getNumberOfThreads());
   print_info("    -paper        = the paper to the letter: no feature-width normalisation, no "
-             "joining of supernode trees that meet at no saddle (default: off)\n");
+             "joining of supernode trees that meet at no saddle, recursive bisection while NCut "
+             "<= T instead of the largest-gap rule (default: off)\n");
   print_info("    -quiet        = print errors only (default: off)\n");
   print_info("    -h            = this help\n");
 }
@@ -580,6 +582,7 @@ int main(int argc, char** argv) {
   if (opt.paper) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
+    seg.setLargestGapStopping(false);
   }
 
   std::vector<pcl::PointIndices> segments;

@@ -57,6 +57,7 @@ struct Options {
   int adjacent = -1; ///< -1: default; 0/1: setConnectAllAdjacent
   int gap = -1;      ///< -1: default; 0/1: setLargestGapStopping
   int max_segments = -1;
+  double gap_floor = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -83,6 +84,7 @@ void printHelp() {
          "  -adjacent 0|1     setConnectAllAdjacent (default: the library's default)\n"
          "  -gap 0|1          setLargestGapStopping (default: the library's default)\n"
          "  -maxseg N         setMaxSegments (default: the library's default)\n"
+         "  -gapfloor F       setGapFloor (default: the library's default)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
 }
@@ -173,6 +175,8 @@ Options parseOptions(int argc, char** argv) {
       if (b != 0 && b != 1)
         fail("-gap needs 0 or 1");
       o.gap = static_cast<int>(b);
+    } else if (a == "-gapfloor") {
+      o.gap_floor = parseNumber(a, v);
     } else if (a == "-maxseg") {
       o.max_segments = static_cast<int>(parseNumber(a, v));
       if (o.max_segments < 1)
@@ -229,6 +233,10 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setLargestGapStopping(o.gap == 1);
   if (o.max_segments >= 1)
     seg.setMaxSegments(o.max_segments);
+  if (o.gap_floor >= 0)
+    seg.setGapFloor(o.gap_floor);
+  if (o.gap_floor >= 0 && seg.getGapFloor() != o.gap_floor)
+    fail("-gapfloor needs a value > 0");
   if (o.paper) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);

@@ -105,8 +105,10 @@ public:
   void setAlpha2(double alpha2);
   double getAlpha2() const { return similarity_.alpha2; }
 
-  /** \brief Normalized-cut stopping threshold (Sec. 5.2): a part is bisected while its best
-   * NCut is at most this value; >= 0 (default 0.02). Ignored when a number of segments is set. */
+  /** \brief Normalized-cut threshold (Sec. 5.2), >= 0 (default 0.1): no part is split at a
+   * higher NCut. With the largest-gap rule (the default) it bounds the splits the rule chooses
+   * from; without it (the paper), a part is bisected while its best NCut is at most this value.
+   * Ignored when a number of segments is set. */
   void setThreshold(double threshold);
   double getThreshold() const { return cut_.threshold; }
 
@@ -119,8 +121,8 @@ public:
 
   /** \brief Automatic stopping rule (with the threshold): split the part with the lowest NCut
    * first while its NCut is at most the threshold and at most getMaxSegments() parts exist,
-   * then keep the splits up to the largest relative jump in NCut (default false: the paper's
-   * recursive bisection while NCut <= threshold). Ignored with a number of segments. */
+   * then keep the splits up to the largest relative jump in NCut (default true; false: the
+   * paper's recursive bisection while NCut <= threshold). Ignored with a number of segments. */
   void setLargestGapStopping(bool enable);
   bool getLargestGapStopping() const { return cut_.largest_gap; }
 
@@ -128,6 +130,11 @@ public:
    * 20). */
   void setMaxSegments(int segments);
   int getMaxSegments() const { return cut_.max_segments; }
+
+  /** \brief For the largest-gap rule: NCut values below this floor count as the floor, so
+   * that jumps among near-zero values (e.g. 1e-9 to 1e-6) do not count; > 0 (default 0.003). */
+  void setGapFloor(double floor);
+  double getGapFloor() const { return cut_.gap_floor; }
 
   /** \brief Ask for this many segments (> 0); 0 (default) uses the threshold instead. The
    * hierarchy is refined by splitting the part with the lowest NCut first. Fewer segments

@@ -248,7 +248,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
     // Keep the first j splits, j >= 1, where the next split costs the most more than the
     // dearest kept one (log scale; NCuts below kFloor, e.g. separate components, count as
     // kFloor). The threshold stands for the split after the last one.
-    constexpr double kFloor = 1e-3;
+    const double kFloor = std::max(params.gap_floor, 1e-300);
     std::size_t keep = 0;
     double best_gap = -std::numeric_limits<double>::infinity(), level = 0.0;
     for (std::size_t j = 1; j <= ncuts.size(); ++j) {

@@ -190,6 +190,17 @@ void pcl::SupernodeNCutSegmentation<PointT>::setMaxSegments(int segments) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setGapFloor(double floor) {
+  if (!(floor > 0.0) || !std::isfinite(floor)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setGapFloor] floor must be finite and > 0, got "
+              "%g; keeping %g.\n",
+              floor, cut_.gap_floor);
+    return;
+  }
+  cut_.gap_floor = floor;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
   if (segments < 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSegments] segments must be >= 0 "
