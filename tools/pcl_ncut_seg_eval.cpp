@@ -350,6 +350,13 @@ int main(int argc, char** argv) {
   const Options opt = parseOptions(argc, argv);
   // PCL's segmenters report progress at the info level; keep the output to our summary lines.
   pcl::console::setVerbosityLevel(pcl::console::L_WARN);
+  {
+    // Check the segmenter settings once, up front: one line of ours, not the setters' errors.
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+    Segmenter check;
+    configure(check, opt);
+    pcl::console::setVerbosityLevel(pcl::console::L_WARN);
+  }
   const fs::path psb(opt.psb_dir), out_dir(opt.out_dir);
   if (!fs::is_directory(psb / "off") || !fs::is_directory(psb / "seg"))
     fail(opt.psb_dir + " has no off/ and seg/ directories");
