@@ -40,12 +40,13 @@ FeatureStats ringStats() {
   return st;
 }
 Connectivity ringConn() {
-  return {{{0, 0}, 4.0}, {{1, 1}, 4.0}, {{2, 2}, 4.0},
-          {{0, 1}, 2.0}, {{1, 2}, 2.0}, {{0, 2}, 1.0}};
+  return {{{0, 0}, 4.0}, {{1, 1}, 4.0}, {{2, 2}, 4.0}, {{0, 1}, 2.0}, {{1, 2}, 2.0}, {{0, 2}, 1.0}};
 }
 
 /// Member vertex of supernode s among l supernodes.
-std::uint32_t m(std::size_t l, std::uint32_t s) { return static_cast<std::uint32_t>(l + s); }
+std::uint32_t m(std::size_t l, std::uint32_t s) {
+  return static_cast<std::uint32_t>(l + s);
+}
 
 /// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1 and the
 /// given member-member edges.
@@ -107,8 +108,8 @@ TEST(MinSegmentFraction, RefusesASplitThatLeavesASmallSide) {
 TEST(LargestGap, StopsWhereTheNCutJumps) {
   // Three tight pairs {0,1}, {2,3}, {4,5} (weight 1) in a chain joined by weak edges (1e-3):
   // two cheap splits, then every further split costs orders of magnitude more.
-  const WeightedGraph g = memberGraph(
-      6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
+  const WeightedGraph g =
+      memberGraph(6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
   CutParams p;
   p.largest_gap = false;
   p.threshold = 2.0; // the paper's rule splits everything that can be split

@@ -36,8 +36,7 @@ TEST(Metrics, FourFacesByHand) {
   // Rm: R's {0,1,2} best overlap 2, {3} 1 -> missed 1 of 4. Rf: S's {0,1} 2, {2,3} 1 -> 1/4.
   // E(S,R,f) = 0, 0, 1/2, 1/2 (sum 1); E(R,S,f) = 1/3, 1/3, 2/3, 0 (sum 4/3).
   // GCE = min(1, 4/3) / 4 = 1/4; LCE = (0 + 0 + 1/2 + 0) / 4 = 1/8.
-  expectScores(compareSegmentations({0, 0, 1, 1}, {0, 0, 0, 1}, {}), 0.5, 0.25, 0.25, 0.25,
-               0.125);
+  expectScores(compareSegmentations({0, 0, 1, 1}, {0, 0, 0, 1}, {}), 0.5, 0.25, 0.25, 0.25, 0.125);
 }
 
 TEST(Metrics, AreaWeightsHammingAndConsistencyButNotRand) {
@@ -55,8 +54,8 @@ TEST(Metrics, MissingAndFalseAlarmRatesDiffer) {
   // RI: together in S 3, in R 3, in both 1 -> agree 15 - 3 - 3 + 2 = 11, error 4/15.
   // E(S,R,f) = 1/2, 1/2, 1/2, 1/2, 0, 0 (sum 2); E(R,S,f) = 0, 0, 0, 2/3, 1/3, 1/3 (sum 4/3).
   // GCE = (4/3) / 6 = 2/9; LCE = (0 + 0 + 0 + 1/2 + 0 + 0) / 6 = 1/12.
-  expectScores(compareSegmentations({0, 0, 1, 1, 2, 2}, {0, 1, 3, 2, 2, 2}, {}), 4.0 / 15,
-               1.0 / 6, 1.0 / 3, 2.0 / 9, 1.0 / 12);
+  expectScores(compareSegmentations({0, 0, 1, 1, 2, 2}, {0, 1, 3, 2, 2, 2}, {}), 4.0 / 15, 1.0 / 6,
+               1.0 / 3, 2.0 / 9, 1.0 / 12);
 }
 
 TEST(Metrics, OneSegment) {
@@ -65,8 +64,8 @@ TEST(Metrics, OneSegment) {
   // A refinement of the other segmentation has GCE = LCE = 0: R refines S.
   expectScores(compareSegmentations({4, 4, 4, 4}, {0, 0, 1, 2}, {}), 5.0 / 6, 0, 0.5, 0, 0);
   // By area (1, 1, 1, 5): Rf = 1 - 5/8.
-  expectScores(compareSegmentations({4, 4, 4, 4}, {0, 0, 1, 2}, {1, 1, 1, 5}), 5.0 / 6, 0,
-               3.0 / 8, 0, 0);
+  expectScores(compareSegmentations({4, 4, 4, 4}, {0, 0, 1, 2}, {1, 1, 1, 5}), 5.0 / 6, 0, 3.0 / 8,
+               0, 0);
 }
 
 TEST(Metrics, OneSegmentPerFace) {
@@ -74,8 +73,8 @@ TEST(Metrics, OneSegmentPerFace) {
   // R's {0,1} keeps one of its faces (Rm 1/4); nothing is extra (Rf 0); S refines R.
   expectScores(compareSegmentations({0, 1, 2, 3}, {0, 0, 1, 2}, {}), 1.0 / 6, 0.25, 0, 0, 0);
   // By area (1, 3, 1, 1): the larger face of {0,1} is kept, the other (1 of 6) is missed.
-  expectScores(compareSegmentations({0, 1, 2, 3}, {0, 0, 1, 2}, {1, 3, 1, 1}), 1.0 / 6,
-               1.0 / 6, 0, 0, 0);
+  expectScores(compareSegmentations({0, 1, 2, 3}, {0, 0, 1, 2}, {1, 3, 1, 1}), 1.0 / 6, 1.0 / 6, 0,
+               0, 0);
 }
 
 TEST(Metrics, UnassignedFacesFormOneSegment) {

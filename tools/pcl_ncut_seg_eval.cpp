@@ -6,8 +6,8 @@
  *
  * For each mesh <psb_dir>/off/<id>.off: one point at each face's centroid (so each point
  * carries its face's human label), a segmentation by each method, and the metrics against every
- * human segmentation <psb_dir>/seg/<id>/<id>_<k>.seg, averaged per model and then over models. Writes
- * <out_dir>/models.csv, categories.csv and tables.md.
+ * human segmentation <psb_dir>/seg/<id>/<id>_<k>.seg, averaged per model and then over models.
+ * Writes <out_dir>/models.csv, categories.csv and tables.md.
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
@@ -45,7 +45,7 @@ struct Options {
   std::string psb_dir, out_dir;
   std::vector<std::string> methods = kAllMethods;
   std::vector<std::string> modes = {"auto", "given"};
-  std::vector<int> ids;          ///< empty: every off/<id>.off
+  std::vector<int> ids;           ///< empty: every off/<id>.off
   std::vector<double> thresholds; ///< auto mode; empty: the segmenter's default
   std::vector<double> fractions;  ///< auto mode, min segment fractions; empty: the default
   unsigned threads = 1;
@@ -614,8 +614,8 @@ int main(int argc, char** argv) {
       md << " | " << fmt(m.segments, 1) << " | " << fmt(m.seconds, 2) << " |\n";
     }
     for (int k = 0; k < 6; ++k) {
-      md << "\n#### " << (mode == "auto" ? "Automatic" : "Given count") << ": "
-         << kMetricNames[k] << " per category\n\n| category |";
+      md << "\n#### " << (mode == "auto" ? "Automatic" : "Given count") << ": " << kMetricNames[k]
+         << " per category\n\n| category |";
       for (const auto& method : methods)
         md << ' ' << method << " |";
       md << "\n|---|";
@@ -644,9 +644,9 @@ int main(int argc, char** argv) {
           continue;
         const Mean m = it->second.result();
         std::cout << mode << " " << method << ": 1-RI " << fmt(m.scores.rand_index_error)
-                  << " Hamming " << fmt(m.scores.hamming) << " GCE " << fmt(m.scores.gce)
-                  << " LCE " << fmt(m.scores.lce) << " segments " << fmt(m.segments, 1)
-                  << " s/model " << fmt(m.seconds, 2) << std::endl;
+                  << " Hamming " << fmt(m.scores.hamming) << " GCE " << fmt(m.scores.gce) << " LCE "
+                  << fmt(m.scores.lce) << " segments " << fmt(m.segments, 1) << " s/model "
+                  << fmt(m.seconds, 2) << std::endl;
       }
     std::cout << "Wrote " << (out_dir / "models.csv").string() << ", categories.csv, tables.md"
               << std::endl;

@@ -23,7 +23,9 @@ std::vector<std::size_t> compact(const std::vector<int>& labels, std::size_t& co
   return out;
 }
 
-double choose2(double n) { return n * (n - 1.0) / 2.0; }
+double choose2(double n) {
+  return n * (n - 1.0) / 2.0;
+}
 
 } // namespace
 
@@ -134,10 +136,10 @@ SegmentationScores operator/(SegmentationScores a, double d) {
 }
 
 std::string psbCategory(int id) {
-  static const char* const names[] = {
-      "Human", "Cup",  "Glasses", "Airplane", "Ant",  "Chair",   "Octopus",
-      "Table", "Teddy", "Hand",   "Plier",    "Fish", "Bird",    "Spring",
-      "Armadillo", "Bust", "Mech", "Bearing", "Vase", "Fourleg"};
+  static const char* const names[] = {"Human", "Cup",     "Glasses", "Airplane", "Ant",
+                                      "Chair", "Octopus", "Table",   "Teddy",    "Hand",
+                                      "Plier", "Fish",    "Bird",    "Spring",   "Armadillo",
+                                      "Bust",  "Mech",    "Bearing", "Vase",     "Fourleg"};
   if (id < 1 || id > 400)
     return {};
   return names[(id - 1) / 20];

@@ -11,9 +11,9 @@ namespace pcl_ncut_seg {
 
 /** \brief One setting for every model, in units of the model's bounding-box diagonal d. */
 struct PeerParams {
-  double voxel_fraction = 0.01; ///< supervoxel voxel resolution = voxel_fraction * d
-  double seed_fraction = 0.05;  ///< supervoxel seed resolution = seed_fraction * d
-  int normal_neighbours = 10;   ///< k of PCL's normal estimation
+  double voxel_fraction = 0.01;      ///< supervoxel voxel resolution = voxel_fraction * d
+  double seed_fraction = 0.05;       ///< supervoxel seed resolution = seed_fraction * d
+  int normal_neighbours = 10;        ///< k of PCL's normal estimation
   float concavity_tolerance = 10.0f; ///< degrees (LCCP and CPC)
   float smoothness_threshold = 0.1f; ///< LCCP smoothness check
   unsigned min_segment_size = 0;     ///< supervoxels; smaller segments are merged (0 = off)
