@@ -270,14 +270,16 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
     }
   } else {
     // Recursive bisection until NCut exceeds the threshold.
-    const bool use_mass = params.min_segment_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
+    const bool use_mass =
+        params.min_segment_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
     auto mass = [&](const std::vector<std::uint32_t>& vertices) {
       double m = 0.0;
       for (std::uint32_t v : vertices)
         m += graph.mass[v];
       return m;
     };
-    const double min_mass = use_mass ? params.min_segment_fraction * mass(h.nodes[0].vertices) : 0.0;
+    const double min_mass =
+        use_mass ? params.min_segment_fraction * mass(h.nodes[0].vertices) : 0.0;
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const int i = stack.back();
