@@ -1,7 +1,6 @@
 /*
- * The options that extend the paper's cut (each off by default or one setting away from the
- * paper): all adjacent supernode pairs in G_s, a minimum segment fraction, and the
- * largest-gap stopping rule.
+ * The options that extend the paper's cut (each one setting away from the paper): adjacent
+ * supernode pairs in G_s, a minimum segment fraction, and the largest-gap stopping rule.
  */
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
@@ -71,15 +70,26 @@ WeightedGraph memberGraph(std::size_t l, const std::vector<WeightedGraph::Edge>&
 TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
   SimilarityParams p;
   p.normalize_width = false;
+  p.connect_all_adjacent = false; // the paper
   const WeightedGraph saddles_only =
       buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
   EXPECT_EQ(weight(saddles_only, m(3, 0), m(3, 2)), -1) << "the paper: a tree of saddle edges";
   p.connect_all_adjacent = true;
+  p.adjacent_share = 0.0;
   const WeightedGraph all = buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
   EXPECT_EQ(all.edges.size(), saddles_only.edges.size() + 1);
   // eq. (9) with d1 = 0 (equal heights), d2 = 1 - 1/2, alpha = 0.5 (equal widths).
   EXPECT_NEAR(weight(all, m(3, 0), m(3, 2)), std::exp(-0.5 / 0.5), 1e-12);
   EXPECT_NEAR(weight(all, m(3, 0), m(3, 1)), weight(saddles_only, m(3, 0), m(3, 1)), 1e-15);
+  // s0 and s2 touch with conn 1; each has total contact 3: joined up to a share of 1/3.
+  p.adjacent_share = 0.3;
+  EXPECT_GT(weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
+                   m(3, 2)),
+            0);
+  p.adjacent_share = 0.5;
+  EXPECT_EQ(weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
+                   m(3, 2)),
+            -1);
   // Member masses are the supernodes' feature areas.
   ASSERT_EQ(all.mass.size(), 6u);
   EXPECT_EQ(all.mass[0], 0.0);

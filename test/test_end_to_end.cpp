@@ -242,8 +242,6 @@ const char* knownLimitation(const std::string& test, const std::string& shape) {
        "the bar has no centrality maximum: the balls' supernodes meet in its middle"},
       {{"NonUniformSampling", "dumbbell"},
        "the bar has no centrality maximum: the balls' supernodes meet in its middle"},
-      {{"NonFinite", "hand"},
-       "removing 2.7% of the points changes which near-tied palm split is taken"},
   };
   const auto it = known.find({test, shape});
   return it == known.end() ? nullptr : it->second;

@@ -90,7 +90,7 @@ void printHelp(const char* name) {
              "result does not depend on it (default: %u)\n",
              d.getNumberOfThreads());
   print_info("    -paper        = the paper to the letter: no feature-width normalisation, no "
-             "joining of supernode trees that meet at no saddle, recursive bisection while NCut "
+             "joining of supernodes that meet at no saddle, recursive bisection while NCut "
              "<= T instead of the largest-gap rule (default: off)\n");
   print_info("    -quiet        = print errors only (default: off)\n");
   print_info("    -h            = this help\n");
@@ -582,6 +582,7 @@ int main(int argc, char** argv) {
   if (opt.paper) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
+    seg.setConnectAllAdjacent(false);
     seg.setLargestGapStopping(false);
   }
 

@@ -58,6 +58,7 @@ struct Options {
   int gap = -1;      ///< -1: default; 0/1: setLargestGapStopping
   int max_segments = -1;
   double gap_floor = -1;
+  double adjacent_share = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -82,6 +83,7 @@ void printHelp() {
          "  -k K -crossing F -area F -height F -beta B -alpha1 A -alpha2 A\n"
          "                    segmenter settings (default: the library's defaults)\n"
          "  -adjacent 0|1     setConnectAllAdjacent (default: the library's default)\n"
+         "  -share F          setAdjacentShare (default: the library's default)\n"
          "  -gap 0|1          setLargestGapStopping (default: the library's default)\n"
          "  -maxseg N         setMaxSegments (default: the library's default)\n"
          "  -gapfloor F       setGapFloor (default: the library's default)\n"
@@ -175,6 +177,8 @@ Options parseOptions(int argc, char** argv) {
       if (b != 0 && b != 1)
         fail("-gap needs 0 or 1");
       o.gap = static_cast<int>(b);
+    } else if (a == "-share") {
+      o.adjacent_share = parseNumber(a, v);
     } else if (a == "-gapfloor") {
       o.gap_floor = parseNumber(a, v);
     } else if (a == "-maxseg") {
@@ -229,6 +233,10 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setAlpha2(o.alpha2);
   if (o.adjacent >= 0)
     seg.setConnectAllAdjacent(o.adjacent == 1);
+  if (o.adjacent_share >= 0)
+    seg.setAdjacentShare(o.adjacent_share);
+  if (o.adjacent_share >= 0 && seg.getAdjacentShare() != o.adjacent_share)
+    fail("-share needs a value in [0, 1]");
   if (o.gap >= 0)
     seg.setLargestGapStopping(o.gap == 1);
   if (o.max_segments >= 1)

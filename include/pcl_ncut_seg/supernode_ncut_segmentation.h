@@ -164,6 +164,12 @@ public:
   void setConnectAllAdjacent(bool connect);
   bool getConnectAllAdjacent() const { return similarity_.connect_all_adjacent; }
 
+  /** \brief With setConnectAllAdjacent(true): join two supernodes that meet at no saddle only
+   * if their contact (eq. 8) is at least this share of the smaller of their total contacts
+   * with other supernodes, in [0, 1] (default 0: every touching pair). */
+  void setAdjacentShare(double share);
+  double getAdjacentShare() const { return similarity_.adjacent_share; }
+
   /** \brief Threads for the centrality phase; 0 (default) uses all cores. Output does not
    * depend on it. */
   void setNumberOfThreads(unsigned threads);

@@ -119,14 +119,25 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
     tree[find(i)] = find(p);
   }
   if (params.connect_all_adjacent) {
-    // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child).
+    // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child)
+    // whose contact is a large enough share of the smaller total contact.
+    std::vector<double> contact(l, 0.0);
+    for (const auto& [key, value] : conn)
+      if (key.first != key.second) {
+        contact[key.first] += value;
+        contact[key.second] += value;
+      }
     for (const auto& [key, value] : conn) {
       const auto [i, j] = key;
       if (i == j || sn.parent[i] == j || sn.parent[j] == i)
         continue;
+      if (value < params.adjacent_share * std::min(contact[i], contact[j]))
+        continue;
       g.edges.push_back({l + i, l + j, similarity(i, j)});
+      tree[find(i)] = find(j);
     }
-  } else if (params.connect_adjacent_trees) {
+  }
+  if (params.connect_adjacent_trees) {
     // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
     // apart) would be cut at zero cost: join them where they are most connected point-wise.
     std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;

@@ -238,6 +238,17 @@ void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect)
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
+  if (!(share >= 0.0 && share <= 1.0)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
+              "%g; keeping %g.\n",
+              share, similarity_.adjacent_share);
+    return;
+  }
+  similarity_.adjacent_share = share;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfThreads(unsigned threads) {
   num_threads_ = threads; // output does not depend on it, so nothing to invalidate
 }
