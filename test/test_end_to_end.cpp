@@ -237,16 +237,11 @@ const char* knownLimitation(const std::string& test, const std::string& shape) {
   static const std::map<std::pair<std::string, std::string>, const char*> known = {
       {{"NumberOfSegments", "quadruped"},
        "the tail's supernode grows into the rear of the body: no saddle separates them"},
-      {{"DefaultThreshold", "dumbbell"},
-       "the bar's split (NCut 0.08) is above the default threshold: no single threshold fits "
-       "every shape (automatic stopping is future work)"},
       {{"Density", "quadruped"}, "the tail/body leak (above) depends on the sampling"},
       {{"Density", "dumbbell"},
        "the bar has no centrality maximum: the balls' supernodes meet in its middle"},
       {{"NonUniformSampling", "dumbbell"},
        "the bar has no centrality maximum: the balls' supernodes meet in its middle"},
-      {{"NonFinite", "hand"},
-       "removing 2.7% of the points changes which near-tied palm split is taken"},
   };
   const auto it = known.find({test, shape});
   return it == known.end() ? nullptr : it->second;

@@ -184,7 +184,7 @@ TEST(Segmentation, SettersRejectBadValuesAndKeepTheOldOnes) {
   EXPECT_EQ(seg.getAlpha1(), 2.0);
   EXPECT_EQ(seg.getAlpha2(), 0.5);
   seg.setThreshold(-1);
-  EXPECT_EQ(seg.getThreshold(), 0.02);
+  EXPECT_EQ(seg.getThreshold(), 0.1);
   seg.setNumberOfSegments(-2);
   EXPECT_EQ(seg.getNumberOfSegments(), 0);
   seg.setNumberOfSplitValues(0);

@@ -49,6 +49,7 @@ TEST(SupernodeGraph, Weights7And9ByHand) {
   SimilarityParams p; // beta 2, alpha1 2, alpha2 0.5
   p.normalize_width = false;
   p.connect_adjacent_trees = false;
+  p.connect_all_adjacent = false; // the paper's graph
   const WeightedGraph g = buildSupernodeGraph(threeSupernodes(), threeStats(), threeConn(), p);
   EXPECT_EQ(g.num_vertices, 6u);
   EXPECT_EQ(g.edges.size(), 5u); // three r-m, two m-m
@@ -66,6 +67,7 @@ TEST(SupernodeGraph, Weights7And9ByHand) {
 TEST(SupernodeGraph, WidthNormalisationMakesWeightsUnitFree) {
   SimilarityParams p;
   p.connect_adjacent_trees = false;
+  p.connect_all_adjacent = false; // the paper's graph
   FeatureStats scaled = threeStats(); // the same shape in units 10x larger
   for (std::size_t i = 0; i < 3; ++i) {
     scaled.height[i] *= 10;
@@ -96,8 +98,10 @@ TEST(SupernodeGraph, AdjacentTreesWithoutSaddleAreJoinedAtTheirStrongestContact)
   const Connectivity conn = {{{0, 1}, 1.0}, {{0, 2}, 5.0}, {{1, 2}, 2.0}};
   SimilarityParams p;
   p.connect_adjacent_trees = false;
+  p.connect_all_adjacent = false; // the paper's graph
   EXPECT_EQ(buildSupernodeGraph(sn, st, conn, p).edges.size(), 3u); // r-m only
   p.connect_adjacent_trees = true;
+  p.connect_all_adjacent = false;
   const WeightedGraph g = buildSupernodeGraph(sn, st, conn, p);
   // A maximum spanning forest: {0, 2} then {1, 2}; {0, 1} would close a cycle.
   EXPECT_EQ(g.edges.size(), 5u);

@@ -240,8 +240,9 @@ std::vector<Flag> algorithmFlags() {
       realFlag("-alpha1", "A", "alpha1 of eq. (9), > 0", num(d.getAlpha1()), 0, 1e300, true),
       realFlag("-alpha2", "A", "alpha2 of eq. (9), > 0", num(d.getAlpha2()), 0, 1e300, true),
       realFlag("-threshold", "T",
-               "normalized-cut stopping threshold: a part is bisected while its best NCut <= T, "
-               ">= 0",
+               "normalized-cut threshold, >= 0: no part is split at a higher NCut; the "
+               "largest-gap rule then keeps the splits up to the largest jump in NCut (with "
+               "-paper: a part is bisected while its best NCut <= T)",
                num(d.getThreshold()), 0),
       intFlag("-segments", "K", "ask for K segments instead of using the threshold, >= 1", "off",
               1),
@@ -251,8 +252,22 @@ std::vector<Flag> algorithmFlags() {
               "threads for the centrality phase, >= 0; 0 = all cores; the result does not "
               "depend on it",
               num(d.getNumberOfThreads()), 0),
+      realFlag("-gap_floor", "F",
+               "largest-gap stopping rule: NCut values below F count as F, > 0",
+               num(d.getGapFloor()), 0, 1e308, true),
+      intFlag("-max_segments", "K", "largest-gap stopping rule: at most K segments, >= 1",
+              num(d.getMaxSegments()), 1),
+      realFlag("-adjacent_share", "S",
+               "join touching supernodes that meet at no saddle when their contact is at least "
+               "this share of the smaller total contact, in [0, 1]",
+               num(d.getAdjacentShare()), 0, 1),
+      realFlag("-min_fraction", "F",
+               "threshold cut: a part is bisected only if each side keeps this fraction of the "
+               "feature area, in [0, 0.5]",
+               num(d.getMinSegmentFraction()), 0, 0.5),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
-                           "of supernode trees that meet at no saddle"),
+                           "of supernodes that meet at no saddle, recursive bisection while "
+                           "NCut <= T instead of the largest-gap rule"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
       realFlag("-face_angle", "DEG",
@@ -308,9 +323,19 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setCadMode(true);
   if (flags.has("-face_angle"))
     seg.setFaceAngle(static_cast<float>(flags.real("-face_angle")));
+  if (flags.has("-gap_floor"))
+    seg.setGapFloor(flags.real("-gap_floor"));
+  if (flags.has("-max_segments"))
+    seg.setMaxSegments(static_cast<int>(flags.integer("-max_segments")));
+  if (flags.has("-adjacent_share"))
+    seg.setAdjacentShare(flags.real("-adjacent_share"));
+  if (flags.has("-min_fraction"))
+    seg.setMinSegmentFraction(flags.real("-min_fraction"));
   if (flags.has("-paper")) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
+    seg.setConnectAllAdjacent(false);
+    seg.setLargestGapStopping(false);
   }
   return true;
 }

@@ -107,10 +107,36 @@ public:
   void setAlpha2(double alpha2);
   double getAlpha2() const { return similarity_.alpha2; }
 
-  /** \brief Normalized-cut stopping threshold (Sec. 5.2): a part is bisected while its best
-   * NCut is at most this value; >= 0 (default 0.02). Ignored when a number of segments is set. */
+  /** \brief Normalized-cut threshold (Sec. 5.2), >= 0 (default 0.1): no part is split at a
+   * higher NCut. With the largest-gap rule (the default) it bounds the splits the rule chooses
+   * from; without it (the paper), a part is bisected while its best NCut is at most this value.
+   * Ignored when a number of segments is set. */
   void setThreshold(double threshold);
   double getThreshold() const { return cut_.threshold; }
+
+  /** \brief With the threshold: a part is bisected only if each side keeps at least this
+   * fraction of the total feature area, in [0, 0.5] (0 follows the paper). Stops the cut from
+   * chipping small pieces off shapes without elongated parts. Ignored with a number of
+   * segments. */
+  void setMinSegmentFraction(double fraction);
+  double getMinSegmentFraction() const { return cut_.min_segment_fraction; }
+
+  /** \brief Automatic stopping rule (with the threshold): split the part with the lowest NCut
+   * first while its NCut is at most the threshold and at most getMaxSegments() parts exist,
+   * then keep the splits up to the largest relative jump in NCut (default true; false: the
+   * paper's recursive bisection while NCut <= threshold). Ignored with a number of segments. */
+  void setLargestGapStopping(bool enable);
+  bool getLargestGapStopping() const { return cut_.largest_gap; }
+
+  /** \brief Upper bound on the number of segments for the largest-gap rule, >= 1 (default
+   * 20). */
+  void setMaxSegments(int segments);
+  int getMaxSegments() const { return cut_.max_segments; }
+
+  /** \brief For the largest-gap rule: NCut values below this floor count as the floor, so
+   * that jumps among near-zero values (e.g. 1e-9 to 1e-6) do not count; > 0 (default 0.003). */
+  void setGapFloor(double floor);
+  double getGapFloor() const { return cut_.gap_floor; }
 
   /** \brief Ask for this many segments (> 0); 0 (default) uses the threshold instead. The
    * hierarchy is refined by splitting the part with the lowest NCut first. Fewer segments
@@ -145,6 +171,19 @@ public:
    * Faces that meet at a smaller angle than about this one tend to stay together. */
   void setFaceAngle(float degrees);
   float getFaceAngle() const { return cad_.face_angle; }
+
+  /** \brief Join every pair of supernodes that touch in the kNN graph with the weight of
+   * eq. (9), not only those that meet at a saddle (false follows the paper). Holds shapes
+   * without elongated parts together: a supernode is no longer cut off by one small edge.
+   * Implies what setConnectAdjacentTrees(true) does. */
+  void setConnectAllAdjacent(bool connect);
+  bool getConnectAllAdjacent() const { return similarity_.connect_all_adjacent; }
+
+  /** \brief With setConnectAllAdjacent(true): join two supernodes that meet at no saddle only
+   * if their contact (eq. 8) is at least this share of the smaller of their total contacts
+   * with other supernodes, in [0, 1] (default 0: every touching pair). */
+  void setAdjacentShare(double share);
+  double getAdjacentShare() const { return similarity_.adjacent_share; }
 
   /** \brief Threads for the centrality phase; 0 (default) uses all cores. Output does not
    * depend on it. */

@@ -225,25 +225,69 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
   std::iota(all.begin(), all.end(), 0u);
   add(std::move(all), -1);
 
-  if (params.num_segments > 0) {
-    // Best splits first: the leaf whose bisection has the lowest NCut.
-    for (int leaves = 1; leaves < params.num_segments; ++leaves) {
+  // Best splits first: the leaf whose bisection has the lowest NCut (at most `cap`).
+  auto bestFirst = [&](int max_leaves, double cap, std::vector<double>* ncuts) {
+    for (int leaves = 1; leaves < max_leaves; ++leaves) {
       int best = -1;
       for (std::size_t i = 0; i < h.nodes.size(); ++i)
         if (h.nodes[i].left < 0 && h.nodes[i].has_split &&
             (best < 0 || h.nodes[i].ncut < h.nodes[best].ncut))
           best = static_cast<int>(i);
-      if (best < 0)
+      if (best < 0 || h.nodes[best].ncut > cap)
         break;
+      if (ncuts)
+        ncuts->push_back(h.nodes[best].ncut);
       split(best);
+    }
+  };
+  if (params.num_segments > 0) {
+    bestFirst(params.num_segments, std::numeric_limits<double>::infinity(), nullptr);
+  } else if (params.largest_gap) {
+    std::vector<double> ncuts;
+    bestFirst(std::max(params.max_segments, 1), params.threshold, &ncuts);
+    // Keep the first j splits, j >= 1, where the next split costs the most more than the
+    // dearest kept one (log scale; NCuts below kFloor, e.g. separate components, count as
+    // kFloor). The threshold stands for the split after the last one.
+    const double kFloor = std::max(params.gap_floor, 1e-300);
+    std::size_t keep = 0;
+    double best_gap = -std::numeric_limits<double>::infinity(), level = 0.0;
+    for (std::size_t j = 1; j <= ncuts.size(); ++j) {
+      level = std::max(level, ncuts[j - 1]);
+      const double next = j < ncuts.size() ? ncuts[j] : params.threshold;
+      const double gap = std::log(std::max(next, kFloor)) - std::log(std::max(level, kFloor));
+      if (gap > best_gap) {
+        best_gap = gap;
+        keep = j;
+      }
+    }
+    if (keep < ncuts.size()) {
+      // Rebuild with exactly `keep` splits: the best-first order is deterministic.
+      std::vector<std::uint32_t> root = std::move(h.nodes[0].vertices);
+      h.nodes.clear();
+      splits.clear();
+      add(std::move(root), -1);
+      bestFirst(static_cast<int>(keep) + 1, params.threshold, nullptr);
     }
   } else {
     // Recursive bisection until NCut exceeds the threshold.
+    const bool use_mass =
+        params.min_segment_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
+    auto mass = [&](const std::vector<std::uint32_t>& vertices) {
+      double m = 0.0;
+      for (std::uint32_t v : vertices)
+        m += graph.mass[v];
+      return m;
+    };
+    const double min_mass =
+        use_mass ? params.min_segment_fraction * mass(h.nodes[0].vertices) : 0.0;
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const int i = stack.back();
       stack.pop_back();
       if (!h.nodes[i].has_split || h.nodes[i].ncut > params.threshold)
+        continue;
+      // A split that would leave a side below the minimum mass is refused (the part stays).
+      if (use_mass && std::min(mass(splits[i].v1), mass(splits[i].v2)) < min_mass)
         continue;
       split(i);
       stack.push_back(h.nodes[i].right);

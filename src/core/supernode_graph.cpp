@@ -85,6 +85,10 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   for (std::uint32_t s = 0; s < l; ++s)
     width[s] = std::max(static_cast<double>(stats.width[s]) / width_unit, 1e-300);
 
+  g.mass.assign(2 * l, 0.0);
+  for (std::uint32_t s = 0; s < l; ++s)
+    g.mass[l + s] = stats.area[s];
+
   // eq. (7): r_i - m_i
   for (std::uint32_t i = 0; i < l; ++i) {
     const double ratio = max_self > 0.0 ? lookup(conn, i, i) / max_self : 0.0;
@@ -113,6 +117,25 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
       continue;
     g.edges.push_back({l + std::min(i, p), l + std::max(i, p), similarity(i, p)});
     tree[find(i)] = find(p);
+  }
+  if (params.connect_all_adjacent) {
+    // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child)
+    // whose contact is a large enough share of the smaller total contact.
+    std::vector<double> contact(l, 0.0);
+    for (const auto& [key, value] : conn)
+      if (key.first != key.second) {
+        contact[key.first] += value;
+        contact[key.second] += value;
+      }
+    for (const auto& [key, value] : conn) {
+      const auto [i, j] = key;
+      if (i == j || sn.parent[i] == j || sn.parent[j] == i)
+        continue;
+      if (value < params.adjacent_share * std::min(contact[i], contact[j]))
+        continue;
+      g.edges.push_back({l + i, l + j, similarity(i, j)});
+      tree[find(i)] = find(j);
+    }
   }
   if (params.connect_adjacent_trees) {
     // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them

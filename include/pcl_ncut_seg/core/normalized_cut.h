@@ -47,9 +47,20 @@ struct Hierarchy {
 
 /** \brief Cut parameters of the hierarchy. */
 struct CutParams {
-  double threshold = 0.02; ///< split while the best NCut <= threshold
+  double threshold = 0.1;  ///< split while the best NCut <= threshold
   int num_segments = 0;    ///< > 0: instead split the lowest-NCut leaf until this many leaves
   int num_splits = 100;    ///< uniform split values tried per bisection
+  /// Threshold mode only: a split is accepted only if each side holds at least this fraction
+  /// of the total mass (WeightedGraph::mass, feature area); 0 = the paper (no such rule).
+  double min_segment_fraction = 0.0;
+  /// Threshold mode only, an automatic stopping rule: split the lowest-NCut part first (as
+  /// with num_segments) while the NCut is at most the threshold and at most max_segments
+  /// parts exist, then keep the splits up to the largest relative jump of the NCut
+  /// (log scale). The NCut's scale differs from model to model by orders of magnitude; its
+  /// jump does not. false = the paper (recursive bisection while NCut <= threshold).
+  bool largest_gap = true;
+  int max_segments = 20; ///< upper bound on the parts for largest_gap
+  double gap_floor = 3e-3; ///< largest_gap: NCuts below this count as this (no jump among them)
 };
 
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,

@@ -29,6 +29,9 @@ struct WeightedGraph {
     double w;
   };
   std::vector<Edge> edges;
+  /// Optional mass of each vertex (empty: none): the feature area f_a of a member vertex's
+  /// supernode, 0 for representative vertices. Used by CutParams::min_segment_fraction.
+  std::vector<double> mass;
 };
 
 struct SimilarityParams {
@@ -39,6 +42,16 @@ struct SimilarityParams {
   bool normalize_width = true;
   /// Join member-vertex trees that share no saddle but touch in the kNN graph (see README).
   bool connect_adjacent_trees = true;
+  /// Join every pair of supernodes that touch in the kNN graph with the weight of eq. (9), not
+  /// only pairs that meet at a saddle (false = the paper). Without it the member vertices form
+  /// a tree, and on shapes without elongated parts any supernode can be cut off at the price
+  /// of one small edge.
+  bool connect_all_adjacent = true;
+  /// With connect_all_adjacent: join a pair that meets at no saddle only if their contact,
+  /// conn(s_i, s_j), is at least this share of the contact of the one of them with less
+  /// contact to all other supernodes (0 = every touching pair). Patches of a flat region share
+  /// long borders; limbs touch each other through a few feature-crossing edges.
+  double adjacent_share = 0.45;
 };
 
 /** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created

@@ -164,6 +164,44 @@ void pcl::SupernodeNCutSegmentation<PointT>::setThreshold(double threshold) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setMinSegmentFraction(double fraction) {
+  if (!(fraction >= 0.0 && fraction <= 0.5)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setMinSegmentFraction] fraction must be in "
+              "[0, 0.5], got %g; keeping %g.\n",
+              fraction, cut_.min_segment_fraction);
+    return;
+  }
+  cut_.min_segment_fraction = fraction;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setLargestGapStopping(bool enable) {
+  cut_.largest_gap = enable;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setMaxSegments(int segments) {
+  if (segments < 1) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setMaxSegments] segments must be >= 1, got %d; "
+              "keeping %d.\n",
+              segments, cut_.max_segments);
+    return;
+  }
+  cut_.max_segments = segments;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setGapFloor(double floor) {
+  if (!(floor > 0.0) || !std::isfinite(floor)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setGapFloor] floor must be finite and > 0, got "
+              "%g; keeping %g.\n",
+              floor, cut_.gap_floor);
+    return;
+  }
+  cut_.gap_floor = floor;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
   if (segments < 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSegments] segments must be >= 0 "
@@ -193,6 +231,22 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNormalizeWidth(bool normalize) {
 template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setConnectAdjacentTrees(bool connect) {
   similarity_.connect_adjacent_trees = connect;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect) {
+  similarity_.connect_all_adjacent = connect;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
+  if (!(share >= 0.0 && share <= 1.0)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
+              "%g; keeping %g.\n",
+              share, similarity_.adjacent_share);
+    return;
+  }
+  similarity_.adjacent_share = share;
 }
 
 template <typename PointT>

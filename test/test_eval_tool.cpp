@@ -1,0 +1,126 @@
+/*
+ * pcl_ncut_seg_eval end to end on a tiny benchmark made by hand: a cube whose six faces carry
+ * two human segmentations, scored with the baselines whose metrics are known exactly.
+ */
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class EvalTool : public ::testing::Test {
+protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("pcl_ncut_seg_eval_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "psb" / "off");
+    fs::create_directories(dir_ / "psb" / "seg" / "1");
+    fs::create_directories(dir_ / "out");
+    // The unit cube, six quads: -z, +z, -y, +y, -x, +x.
+    std::ofstream(dir_ / "psb" / "off" / "1.off")
+        << "OFF\n8 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+           "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 3 7 6 2\n4 0 4 7 3\n4 1 2 6 5\n";
+    // One person: the top against the rest; another: one segment.
+    std::ofstream(dir_ / "psb" / "seg" / "1" / "1_0.seg") << "1\n0\n1\n1\n1\n1\n";
+    std::ofstream(dir_ / "psb" / "seg" / "1" / "1_1.seg") << "0\n0\n0\n0\n0\n0\n";
+    std::ofstream(dir_ / "psb" / "nSeg-ByModel.txt") << "2\n";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  int run(const std::string& args) const {
+    const std::string cmd = std::string(PCL_NCUT_SEG_EVAL) + " " + args + " > " +
+                            (dir_ / "stdout.txt").string() + " 2> " +
+                            (dir_ / "stderr.txt").string();
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  std::string stderrText() const {
+    std::ifstream in(dir_ / "stderr.txt");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+  /// method,mode -> columns of models.csv
+  std::map<std::string, std::vector<std::string>> models() const {
+    std::map<std::string, std::vector<std::string>> out;
+    std::ifstream in(dir_ / "out" / "models.csv");
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "method,mode,id,category,faces,segments,seconds,one_minus_rand_index,"
+                    "hamming,hamming_rm,hamming_rf,gce,lce,human_segmentations");
+    while (std::getline(in, line)) {
+      std::vector<std::string> cols;
+      std::stringstream s(line);
+      std::string c;
+      while (std::getline(s, c, ','))
+        cols.push_back(c);
+      out[cols[0] + "," + cols[1]] = cols;
+    }
+    return out;
+  }
+  fs::path dir_;
+};
+
+TEST_F(EvalTool, ScoresTheBaselinesAsComputedByHand) {
+  const std::string args =
+      (dir_ / "psb").string() + " " + (dir_ / "out").string() + " -methods one,human -quiet";
+  ASSERT_EQ(run(args), 0) << stderrText();
+  const auto rows = models();
+  ASSERT_EQ(rows.size(), 4u); // two methods, two modes
+  // One segment against "top | rest": 1 - RI = 5/15 (the pairs with the top face), Rm = 0,
+  // Rf = 1/6; against "one segment": all 0. Averaged over the two people.
+  const auto& one = rows.at("\"one\",auto");
+  EXPECT_EQ(one[2], "1");
+  EXPECT_EQ(one[3], "Human");
+  EXPECT_EQ(one[4], "6");
+  EXPECT_EQ(one[5], "1");
+  EXPECT_NEAR(std::stod(one[7]), 1.0 / 6, 1e-6);
+  EXPECT_NEAR(std::stod(one[8]), 1.0 / 24, 1e-6);
+  EXPECT_NEAR(std::stod(one[9]), 0.0, 1e-6);
+  EXPECT_NEAR(std::stod(one[10]), 1.0 / 12, 1e-6);
+  EXPECT_NEAR(std::stod(one[11]), 0.0, 1e-6);
+  EXPECT_EQ(one[13], "2");
+  // People against each other: 1 - RI 1/3 both ways; 1.5 segments on average.
+  const auto& human = rows.at("\"human\",given");
+  EXPECT_NEAR(std::stod(human[7]), 1.0 / 3, 1e-6);
+  EXPECT_NEAR(std::stod(human[5]), 1.5, 1e-6);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "categories.csv"));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "tables.md"));
+}
+
+TEST_F(EvalTool, RunsEveryMethodOnAModel) {
+  // Too few faces for a meaningful segmentation, but every method must run and be scored.
+  const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() + " -quiet";
+  ASSERT_EQ(run(args), 0) << stderrText();
+  const auto rows = models();
+  for (const char* method : {"ours", "lccp", "cpc", "one", "octants", "human"})
+    for (const char* mode : {"auto", "given"})
+      EXPECT_EQ(rows.count("\"" + std::string(method) + "\"," + mode), 1u) << method << mode;
+}
+
+TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
+  const std::string psb = (dir_ / "psb").string(), out = (dir_ / "out").string();
+  for (const std::string& args :
+       {psb, psb + " " + out + " -methods nothing", psb + " " + out + " -ids 0",
+        psb + " " + out + " -threshold", (dir_ / "none").string() + " " + out,
+        psb + " " + (dir_ / "none").string(), psb + " " + out + " -k 1"}) {
+    EXPECT_EQ(run(args), 1) << args;
+    const std::string err = stderrText();
+    EXPECT_FALSE(err.empty()) << args;
+    EXPECT_EQ(err.find('\n'), err.size() - 1) << "one line: " << err;
+    EXPECT_TRUE(fs::is_empty(dir_ / "out")) << args;
+  }
+}
+
+} // namespace

@@ -1,0 +1,39 @@
+/*
+ * pcl_ncut_seg: the segmenters the evaluation compares against, over plain arrays of points
+ * (x, y, z per point). Each returns one label per point, -1 for a point in no segment.
+ */
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+/** \brief One setting for every model, in units of the model's bounding-box diagonal d. */
+struct PeerParams {
+  double voxel_fraction = 0.01;      ///< supervoxel voxel resolution = voxel_fraction * d
+  double seed_fraction = 0.05;       ///< supervoxel seed resolution = seed_fraction * d
+  int normal_neighbours = 10;        ///< k of PCL's normal estimation
+  float concavity_tolerance = 10.0f; ///< degrees (LCCP and CPC)
+  float smoothness_threshold = 0.1f; ///< LCCP smoothness check
+  unsigned min_segment_size = 0;     ///< supervoxels; smaller segments are merged (0 = off)
+  unsigned cpc_max_cuts = 25;
+  unsigned cpc_min_segments_to_cut = 10; ///< supervoxels a segment needs before it is cut
+  float cpc_min_cut_score = 0.16f;
+  bool cpc_local_constrain = true;
+  bool cpc_directed_cutting = true;
+  bool cpc_clean_cutting = true;
+  unsigned cpc_ransac_iterations = 1000;
+};
+
+/** \brief PCL's LCCP (cpc = false) or CPC (cpc = true) segmentation on supervoxels. Normals come
+ * from PCL's normal estimation over the points' k nearest neighbours and are oriented away from
+ * the points' centroid (the surfaces are closed; PCL would orient them towards the origin).
+ * Points that no supervoxel takes get -1. \return false with a reason on failure. */
+bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParams& params,
+                        std::vector<int>& labels, std::string* error = nullptr);
+
+/** \brief The eight octants around the centroid: a baseline that games the Rand index. */
+std::vector<int> segmentOctants(const std::vector<float>& xyz);
+
+} // namespace pcl_ncut_seg
