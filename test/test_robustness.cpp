@@ -634,7 +634,8 @@ Fingerprint fingerprint(const Cloud::Ptr& cloud, unsigned threads, int segments)
   Segments out;
   seg.extract(out);
   Fingerprint f;
-  for (const auto& p : *seg.getLabeledCloud())
+  const auto labeled = seg.getLabeledCloud(); // keep the cloud alive through the loop
+  for (const auto& p : *labeled)
     f.labels.push_back(p.label);
   f.centrality = seg.getCentrality();
   f.supernodes = seg.getSupernodeLabels(false);

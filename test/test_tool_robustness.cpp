@@ -71,7 +71,8 @@ std::vector<std::uint32_t> libraryLabels(const Cloud::Ptr& cloud) {
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
   std::vector<std::uint32_t> labels;
-  for (const auto& p : *seg.getLabeledCloud())
+  const auto labeled = seg.getLabeledCloud(); // keep the cloud alive through the loop
+  for (const auto& p : *labeled)
     labels.push_back(p.label);
   return labels;
 }
