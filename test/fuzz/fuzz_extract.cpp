@@ -92,8 +92,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const double kThreshold[] = {0, 1e-3, 0.02, 0.1, 0.5, 1, 10, 1e300};
   const int k = 2 + in.next() % 15;
   const int samples = in.next() % 8;
-  const float crossing = in.next() / 255.0f, area = in.next() / 255.0f,
-              height = in.next() / 255.0f;
+  const float crossing = in.next() / 255.0f, area = in.next() / 255.0f, height = in.next() / 255.0f;
   const double beta = kPositive[in.next() % 9], alpha1 = kPositive[in.next() % 9],
                alpha2 = kPositive[in.next() % 9];
   const double threshold = kThreshold[in.next() % 8];
