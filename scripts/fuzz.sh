@@ -31,6 +31,6 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   -max_total_time="$FUZZ_SECONDS" -max_len=800 -timeout=20 -rss_limit_mb=2048 \
   -artifact_prefix="$BUILD_DIR/" -print_final_stats=1
 if [ "${FUZZ_MERGE:-0}" = 1 ]; then
-  "$BUILD_DIR/test/fuzz/fuzz_extract" -merge=1 test/fuzz/corpus "$WORK"
+  "$BUILD_DIR/test/fuzz/fuzz_extract" -merge=1 -use_counters=0 test/fuzz/corpus "$WORK"
 fi
 echo "scripts/fuzz.sh: no invariant broken in ${FUZZ_SECONDS} s"
