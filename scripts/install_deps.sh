@@ -8,6 +8,7 @@ PACKAGES=(
   libpcl-dev libeigen3-dev libflann-dev libboost-graph-dev libspectra-dev
   libgtest-dev
   pcl-tools xvfb xauth
+  clang libclang-rt-dev libomp-dev   # scripts/fuzz.sh: libFuzzer, sanitizer runtimes, OpenMP
 )
 
 missing=()

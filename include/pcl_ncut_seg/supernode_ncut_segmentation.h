@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace pcl {
@@ -235,7 +236,8 @@ public:
   const pcl_ncut_seg::PhaseTimes& getPhaseTimes() const { return times_; }
   /** \brief The whole expensive stage, or nullptr. */
   const pcl_ncut_seg::Analysis* getAnalysis() const { return analysis_.get(); }
-  /** \brief Input index of each analysed point (the graph's vertex order). */
+  /** \brief Input index of each analysed point (the graph's vertex order). A point at exactly
+   * the position of an earlier one is not analysed; it shares that point's results. */
   const std::vector<int>& getAnalysedIndices() const { return point_index_; }
   /// \}
 
@@ -259,6 +261,8 @@ protected:
 
   std::shared_ptr<pcl_ncut_seg::Analysis> analysis_; ///< expensive stage, or null
   std::vector<int> point_index_;      ///< graph vertex -> input index
+  std::vector<std::pair<int, std::uint32_t>> duplicates_; ///< (input index, graph vertex) of
+                                                          ///< points at a vertex's position
   pcl_ncut_seg::CutResult result_;
   pcl_ncut_seg::PhaseTimes times_;
   bool have_result_ = false;

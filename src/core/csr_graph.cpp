@@ -5,15 +5,40 @@
 
 namespace pcl_ncut_seg {
 
+namespace {
+float distance(const float* xyz, std::size_t a, std::size_t b) {
+  const float* pa = xyz + 3 * a;
+  const float* pb = xyz + 3 * b;
+  const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+} // namespace
+
 CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
                                 std::size_t k) {
+  // The kNN radius of each point: the distance to the farthest of its k nearest.
+  std::vector<float> radius(n, 0.0f);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::uint32_t q = knn[p * k + j];
+      if (q < n && q != p)
+        radius[p] = std::max(radius[p], distance(xyz, p, q));
+    }
+  // p -> q is used unless it is over kFarEdgeRatio times q's radius: a lone far point (an
+  // outlier) would otherwise reach into a surface over a distance no surface edge has, and
+  // its centrality and area would dominate the refinement thresholds (Sec. 4.3).
+  const float kFarEdgeRatio = 10.0f;
+  auto used = [&](std::size_t p, std::uint32_t q) {
+    return q < n && q != p &&
+           (radius[q] == 0.0f || distance(xyz, p, q) <= kFarEdgeRatio * radius[q]);
+  };
   // Union of both directions: count each p -> q and q -> p, then sort and deduplicate rows.
   CsrGraph g;
   g.offsets.assign(n + 1, 0);
   for (std::size_t p = 0; p < n; ++p)
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
-      if (q >= n || q == p)
+      if (!used(p, q))
         continue;
       ++g.offsets[p + 1];
       ++g.offsets[q + 1];
@@ -25,7 +50,7 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
   for (std::size_t p = 0; p < n; ++p)
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
-      if (q >= n || q == p)
+      if (!used(p, q))
         continue;
       targets[fill[p]++] = q;
       targets[fill[q]++] = static_cast<std::uint32_t>(p);
@@ -46,12 +71,8 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
   g.targets = std::move(targets);
   g.lengths.resize(out);
   for (std::size_t v = 0; v < n; ++v)
-    for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e) {
-      const float* a = xyz + 3 * v;
-      const float* b = xyz + 3 * g.targets[e];
-      const float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-      g.lengths[e] = std::sqrt(dx * dx + dy * dy + dz * dz);
-    }
+    for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
+      g.lengths[e] = distance(xyz, v, g.targets[e]);
   return g;
 }
 

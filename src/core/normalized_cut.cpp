@@ -158,12 +158,24 @@ Bisection bisect(const WeightedGraph& graph, std::size_t num_supernodes,
           for (const auto& [u, w] : g.adj[core[v]])
             cut += in1[pos[u]] ? -w : w;
         }
-        if (members1 == 0 || members1 == members)
-          continue; // both sides must hold points
-        const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
-        if (ncut < best) {
-          best = ncut;
-          best_moved = moved;
+        const bool both_sides = members1 > 0 && members1 < members; // both must hold points
+        if (both_sides) {
+          const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
+          if (ncut < best) {
+            best = ncut;
+            best_moved = moved;
+          }
+        }
+        // Split values that move no vertex give the same NCut again: skip them, so that a huge
+        // number of split values costs no more than one per vertex. One value short of the
+        // next vertex's, which leaves room for rounding.
+        if (moved == k)
+          break; // every vertex in V1: no further value leaves points on both sides
+        if (!every_gap) {
+          const double next =
+              std::floor((y[order[moved]] - lo) / (hi - lo) * (num_splits + 1.0)) - 1.0;
+          if (next > static_cast<double>(t))
+            t = static_cast<std::size_t>(std::min(next, static_cast<double>(steps)));
         }
       }
       if (best_moved > 0)

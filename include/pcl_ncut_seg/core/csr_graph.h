@@ -24,7 +24,9 @@ struct CsrGraph {
 };
 
 /** \brief Build the symmetric kNN graph (Sec. 4.1): edge {p, q} iff q is among p's k nearest
- * neighbours or p among q's (the union of both directions).
+ * neighbours or p among q's (the union of both directions). A direction p -> q longer than 10
+ * times q's kNN radius (its distance to the farthest of its own k nearest) is not used, so a
+ * lone far point (an outlier) does not reach into a surface.
  *
  * \param[in] xyz        n points, 3 floats each
  * \param[in] n          number of points

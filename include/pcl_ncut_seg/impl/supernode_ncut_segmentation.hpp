@@ -14,7 +14,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <tuple>
 
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
@@ -25,6 +27,7 @@ pcl::SupernodeNCutSegmentation<PointT>::~SupernodeNCutSegmentation() = default;
 template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::invalidate() {
   analysis_.reset();
   point_index_.clear();
+  duplicates_.clear();
   result_ = pcl_ncut_seg::CutResult();
   have_result_ = false;
 }
@@ -315,6 +318,40 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   if (valid.size() < before)
     PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] %zu repeated indices ignored.\n",
              before - valid.size());
+  // Points at exactly the position of an earlier one are analysed once and share its segment:
+  // copies would fill each other's k nearest neighbours with zero-length edges.
+  duplicates_.clear();
+  if (valid.size() > 1) {
+    std::vector<int> by_position(valid);
+    auto key = [this](int i) {
+      const PointT& p = (*input_)[i];
+      return std::make_tuple(p.x, p.y, p.z);
+    };
+    std::sort(by_position.begin(), by_position.end(), [&](int a, int b) {
+      return key(a) < key(b) || (key(a) == key(b) && a < b);
+    });
+    std::vector<std::pair<int, int>> copy_of; // (duplicate, first point at its position)
+    for (std::size_t i = 1, first = 0; i < by_position.size(); ++i) {
+      if (key(by_position[i]) == key(by_position[first]))
+        copy_of.emplace_back(by_position[i], by_position[first]);
+      else
+        first = i;
+    }
+    if (!copy_of.empty()) {
+      std::vector<int> copies;
+      for (const auto& c : copy_of)
+        copies.push_back(c.first);
+      std::sort(copies.begin(), copies.end());
+      std::vector<int> distinct;
+      std::set_difference(valid.begin(), valid.end(), copies.begin(), copies.end(),
+                          std::back_inserter(distinct));
+      valid.swap(distinct);
+      for (const auto& c : copy_of)
+        duplicates_.emplace_back(
+            c.first, static_cast<std::uint32_t>(
+                         std::lower_bound(valid.begin(), valid.end(), c.second) - valid.begin()));
+    }
+  }
   const std::size_t n = valid.size();
   if (n == 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point.\n");
@@ -444,6 +481,11 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   segments.resize(result_.num_segments);
   for (std::size_t i = 0; i < point_index_.size(); ++i)
     segments[result_.point_segment[i]].indices.push_back(point_index_[i]);
+  for (const auto& d : duplicates_)
+    segments[result_.point_segment[d.second]].indices.push_back(d.first);
+  if (!duplicates_.empty())
+    for (auto& s : segments)
+      std::sort(s.indices.begin(), s.indices.end());
   for (auto& s : segments)
     s.header = input_->header;
   have_result_ = true;
@@ -518,6 +560,10 @@ pcl::SupernodeNCutSegmentation<PointT>::getColoredCloud() const {
     auto& q = (*out)[point_index_[i]];
     segmentColor(result_.point_segment[i], q.r, q.g, q.b);
   }
+  for (const auto& d : duplicates_) {
+    auto& q = (*out)[d.first];
+    segmentColor(result_.point_segment[d.second], q.r, q.g, q.b);
+  }
   return out;
 }
 
@@ -531,6 +577,8 @@ pcl::SupernodeNCutSegmentation<PointT>::getLabeledCloud() const {
     q.label = 0; // points in no segment
   for (std::size_t i = 0; i < point_index_.size(); ++i)
     (*out)[point_index_[i]].label = result_.point_segment[i] + 1;
+  for (const auto& d : duplicates_)
+    (*out)[d.first].label = result_.point_segment[d.second] + 1;
   return out;
 }
 
@@ -540,6 +588,9 @@ std::vector<float> pcl::SupernodeNCutSegmentation<PointT>::getCentrality() const
   if (analysis_)
     for (std::size_t i = 0; i < point_index_.size(); ++i)
       out[point_index_[i]] = analysis_->centrality.f[i];
+  if (analysis_)
+    for (const auto& d : duplicates_)
+      out[d.first] = analysis_->centrality.f[d.second];
   return out;
 }
 
@@ -568,6 +619,8 @@ std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSupernodeLabels(bool
     const auto& label = refined ? analysis_->supernodes.label : analysis_->raw_supernodes.label;
     for (std::size_t i = 0; i < point_index_.size(); ++i)
       out[point_index_[i]] = static_cast<int>(label[i]);
+    for (const auto& d : duplicates_)
+      out[d.first] = static_cast<int>(label[d.second]);
   }
   return out;
 }

@@ -1,0 +1,703 @@
+/*
+ * Bad and degenerate input through the library: each case gets either an empty result with a
+ * PCL_ERROR saying why, or a correct segmentation (every finite selected point in exactly one
+ * segment). Also determinism across runs and thread counts. test_segmentation.cpp covers the
+ * basic cases (no input, an empty or all-NaN cloud, NaN/inf points, bad indices, a few points
+ * on a line, a cloud repeated three times, rejected setter values); this file adds what those
+ * leave out, and checks the messages.
+ */
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+#include <support/graphs.h>
+#include <support/metrics.h>
+#include <support/shapes.h>
+
+#include <pcl/common/point_tests.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+using Seg = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+using Segments = std::vector<pcl::PointIndices>;
+using namespace pcl_ncut_seg::test;
+
+namespace {
+
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+
+/** extract() and what it printed on stderr (PCL_ERROR and PCL_WARN go there). */
+struct Extracted {
+  Segments segments;
+  std::string err;
+};
+
+Extracted extractCapturing(Seg& seg) {
+  Extracted r;
+  r.segments.resize(2); // extract() must clear what was there
+  ::testing::internal::CaptureStderr();
+  seg.extract(r.segments);
+  r.err = ::testing::internal::GetCapturedStderr();
+  return r;
+}
+
+/** The user gets nothing, and is told why in one PCL_ERROR naming extract(). */
+void expectErrorAndNothing(const Seg& seg, const Extracted& r, const std::string& mention) {
+  EXPECT_TRUE(r.segments.empty());
+  EXPECT_NE(r.err.find("[pcl::SupernodeNCutSegmentation::extract]"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+  EXPECT_TRUE(seg.getLabeledCloud()->empty());
+  EXPECT_TRUE(seg.getColoredCloud()->empty());
+  EXPECT_EQ(seg.getAnalysis(), nullptr);
+  EXPECT_TRUE(seg.getAnalysedIndices().empty());
+}
+
+/** Segments partition the finite points selected by `selected` (all points when null): each
+ * in exactly one segment, every other point in none; segments non-empty, sorted, ordered by
+ * their smallest index. Returns the label of each point (-1 for none). */
+std::vector<int> expectPartition(const Segments& segments, const Cloud& cloud,
+                                 const pcl::Indices* selected = nullptr) {
+  std::vector<char> want(cloud.size(), selected ? 0 : 1);
+  if (selected)
+    for (int i : *selected)
+      want[i] = 1;
+  std::vector<int> label(cloud.size(), -1), count(cloud.size(), 0);
+  int previous_first = -1;
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const auto& idx = segments[s].indices;
+    EXPECT_FALSE(idx.empty()) << "segment " << s << " is empty";
+    if (idx.empty())
+      continue;
+    EXPECT_TRUE(std::is_sorted(idx.begin(), idx.end()));
+    EXPECT_GT(idx.front(), previous_first) << "segments not ordered by smallest index";
+    previous_first = idx.front();
+    for (int i : idx) {
+      EXPECT_GE(i, 0);
+      EXPECT_LT(static_cast<std::size_t>(i), cloud.size());
+      if (i < 0 || static_cast<std::size_t>(i) >= cloud.size())
+        continue;
+      ++count[i];
+      label[i] = static_cast<int>(s);
+    }
+  }
+  std::size_t wrong = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    wrong += count[i] != ((want[i] && pcl::isXYZFinite(cloud[i])) ? 1 : 0);
+  EXPECT_EQ(wrong, 0u) << "points not in exactly one segment (or segmented but not wanted)";
+  return label;
+}
+
+/** Segment `cloud` with default parameters changed by `setup`; expects no error. */
+Segments segment(const Cloud::Ptr& cloud, const std::function<void(Seg&)>& setup = nullptr) {
+  Seg seg;
+  seg.setInputCloud(cloud);
+  if (setup)
+    setup(seg);
+  Segments out;
+  seg.extract(out);
+  return out;
+}
+
+Cloud::Ptr randomCube(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Cloud::Ptr c(new Cloud);
+  for (std::size_t i = 0; i < n; ++i)
+    c->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
+  return c;
+}
+
+Cloud::Ptr transformed(const Cloud& in, double scale, double offset) {
+  Cloud::Ptr out(new Cloud);
+  for (const auto& p : in)
+    out->push_back(pcl::PointXYZ(static_cast<float>(p.x * scale + offset),
+                                 static_cast<float>(p.y * scale + offset),
+                                 static_cast<float>(p.z * scale + offset)));
+  return out;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------
+// No usable input: an empty result and a PCL_ERROR that says why.
+
+TEST(Robustness, NoInputOrNullInputSaysWhy) {
+  Seg seg;
+  Extracted r = extractCapturing(seg);
+  expectErrorAndNothing(seg, r, "no input cloud");
+  seg.setInputCloud(Cloud::ConstPtr());
+  r = extractCapturing(seg);
+  expectErrorAndNothing(seg, r, "no input cloud");
+}
+
+TEST(Robustness, EmptyAndNonFiniteCloudsSayWhy) {
+  Seg seg;
+  seg.setInputCloud(Cloud::Ptr(new Cloud));
+  expectErrorAndNothing(seg, extractCapturing(seg), "no finite point");
+
+  Cloud::Ptr bad(new Cloud);
+  for (int i = 0; i < 200; ++i) // every kind of non-finite coordinate, in every position
+    bad->push_back(i % 4 == 0   ? pcl::PointXYZ(kNaN, kNaN, kNaN)
+                   : i % 4 == 1 ? pcl::PointXYZ(0, kInf, 0)
+                   : i % 4 == 2 ? pcl::PointXYZ(0, 0, -kInf)
+                                : pcl::PointXYZ(static_cast<float>(i), kNaN, 1));
+  seg.setInputCloud(bad);
+  expectErrorAndNothing(seg, extractCapturing(seg), "no finite point");
+}
+
+TEST(Robustness, BadInputAfterAGoodOneLeavesNoStaleResult) {
+  Seg seg;
+  seg.setInputCloud(makeDumbbell(600, 1).cloud);
+  Extracted r = extractCapturing(seg);
+  ASSERT_FALSE(r.segments.empty());
+  ASSERT_FALSE(seg.getLabeledCloud()->empty());
+  Cloud::Ptr nan(new Cloud);
+  nan->push_back(pcl::PointXYZ(kNaN, 0, 0));
+  seg.setInputCloud(nan);
+  r = extractCapturing(seg);
+  expectErrorAndNothing(seg, r, "no finite point");
+  EXPECT_TRUE(seg.getCentrality().size() == 1 && std::isnan(seg.getCentrality()[0]));
+  EXPECT_TRUE(seg.getLocalMaxima().empty());
+  EXPECT_EQ(seg.getNumberOfSupernodes(true), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Non-finite points: in no segment; the rest segmented as if they were absent.
+
+TEST(Robustness, OrganizedCloudWithNanHoles) {
+  // A range image of a bumpy surface: 80 x 60, with a rectangular hole, a ragged border and
+  // scattered dropouts, as a depth sensor produces.
+  const std::uint32_t w = 80, h = 60;
+  Cloud::Ptr organized(new Cloud(w, h));
+  Cloud::Ptr dense(new Cloud);
+  std::vector<int> dense_index;
+  std::mt19937_64 rng(7);
+  for (std::uint32_t v = 0; v < h; ++v)
+    for (std::uint32_t u = 0; u < w; ++u) {
+      const float x = u * 0.05f, y = v * 0.05f;
+      const float z = 0.4f * std::exp(-((x - 1) * (x - 1) + (y - 1.5f) * (y - 1.5f)) * 4) +
+                      0.4f * std::exp(-((x - 3) * (x - 3) + (y - 1.5f) * (y - 1.5f)) * 4);
+      const bool hole =
+          (u >= 35 && u < 45 && v >= 20 && v < 40) || u < (v % 5) || (rng() % 10 == 0);
+      pcl::PointXYZ& p = (*organized)(u, v);
+      p = hole ? pcl::PointXYZ(kNaN, kNaN, kNaN) : pcl::PointXYZ(x, y, z);
+      if (!hole) {
+        dense_index.push_back(static_cast<int>(v * w + u));
+        dense->push_back(p);
+      }
+    }
+  organized->is_dense = false;
+  ASSERT_TRUE(organized->isOrganized());
+
+  Seg seg;
+  seg.setInputCloud(organized);
+  Extracted r = extractCapturing(seg);
+  ASSERT_FALSE(r.segments.empty()) << r.err;
+  expectPartition(r.segments, *organized);
+  // The same segmentation as the cloud without the holes.
+  const Segments clean = segment(dense);
+  ASSERT_EQ(clean.size(), r.segments.size());
+  for (std::size_t s = 0; s < clean.size(); ++s) {
+    ASSERT_EQ(clean[s].indices.size(), r.segments[s].indices.size());
+    for (std::size_t j = 0; j < clean[s].indices.size(); ++j)
+      ASSERT_EQ(dense_index[clean[s].indices[j]], r.segments[s].indices[j]);
+  }
+  // The labelled cloud keeps the image layout; holes have label 0.
+  const auto labeled = seg.getLabeledCloud();
+  EXPECT_EQ(labeled->width, w);
+  EXPECT_EQ(labeled->height, h);
+  for (std::size_t i = 0; i < organized->size(); ++i)
+    if (!pcl::isXYZFinite((*organized)[i])) {
+      EXPECT_EQ((*labeled)[i].label, 0u);
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Few points.
+
+TEST(Robustness, OneTwoAndKPointsInGeneralPosition) {
+  const int k = 10;
+  for (std::size_t n : {1u, 2u, 3u, 9u, 10u, 11u, 12u}) {
+    SCOPED_TRACE(std::to_string(n) + " points");
+    Cloud::Ptr c = randomCube(n, n);
+    Seg seg;
+    seg.setInputCloud(c);
+    seg.setNumberOfNeighbours(k);
+    const Extracted r = extractCapturing(seg);
+    ASSERT_FALSE(r.segments.empty()) << r.err;
+    expectPartition(r.segments, *c);
+    EXPECT_EQ(r.err.find("[pcl::SupernodeNCutSegmentation::extract] the input"), std::string::npos);
+    if (n == 1) {
+      EXPECT_EQ(r.segments.size(), 1u);
+    }
+    // Fewer points than k + 1: k drops to n - 1, with a warning.
+    if (n <= static_cast<std::size_t>(k)) {
+      EXPECT_NE(r.err.find("neighbours instead of 10"), std::string::npos) << r.err;
+    } else {
+      EXPECT_EQ(r.err.find("neighbours instead of"), std::string::npos) << r.err;
+    }
+    EXPECT_EQ(seg.getLabeledCloud()->size(), n);
+  }
+}
+
+TEST(Robustness, FewerPointsThanKWithTheRequestedSegments) {
+  // 6 points, k = 50, asking for 4 segments: at most as many segments as can be split off.
+  Cloud::Ptr c = randomCube(6, 3);
+  const Segments out = segment(c, [](Seg& s) {
+    s.setNumberOfNeighbours(50);
+    s.setNumberOfSegments(4);
+  });
+  ASSERT_FALSE(out.empty());
+  EXPECT_LE(out.size(), 4u);
+  expectPartition(out, *c);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Degenerate geometry: every finite point in exactly one segment, no error.
+
+TEST(Robustness, ManyExactDuplicatesOfSomePoints) {
+  // A hand where one point in ten is repeated twenty times, interleaved: each copy is in the
+  // segment of its original, and the originals are segmented as without the copies.
+  const Cloud::Ptr hand = makeHand(2000, 4).cloud;
+  Cloud::Ptr c(new Cloud);
+  std::vector<int> origin, position;
+  for (std::size_t i = 0; i < hand->size(); ++i) {
+    position.push_back(static_cast<int>(c->size()));
+    c->push_back((*hand)[i]);
+    origin.push_back(static_cast<int>(i));
+    if (i % 10 == 0)
+      for (int r = 0; r < 20; ++r) {
+        c->push_back((*hand)[i]);
+        origin.push_back(static_cast<int>(i));
+      }
+  }
+  const auto six = [](Seg& s) { s.setNumberOfSegments(6); };
+  const Segments out = segment(c, six);
+  ASSERT_FALSE(out.empty());
+  const auto label = expectPartition(out, *c);
+  const auto reference = segmentsToLabels(segment(hand, six), hand->size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < c->size(); ++i)
+    differ += label[i] != reference[origin[i]];
+  EXPECT_EQ(differ, 0u) << "points whose segment changed with the copies";
+}
+
+TEST(Robustness, AllPointsIdenticalGiveOneSegment) {
+  Cloud::Ptr c(new Cloud);
+  for (int i = 0; i < 5000; ++i)
+    c->push_back(pcl::PointXYZ(1.5f, -2.f, 3.f));
+  const Segments out = segment(c);
+  ASSERT_EQ(out.size(), 1u);
+  expectPartition(out, *c);
+}
+
+TEST(Robustness, CollinearPoints) {
+  for (const bool duplicates : {false, true}) {
+    Cloud::Ptr c(new Cloud);
+    for (int i = 0; i < 1000; ++i) { // a line, not along an axis, unevenly spaced
+      const float t = static_cast<float>(i) * (1.0f + 0.3f * std::sin(0.1f * i));
+      c->push_back(pcl::PointXYZ(t, 2 * t, -t));
+      if (duplicates && i % 3 == 0)
+        c->push_back(c->back());
+    }
+    const Segments out = segment(c);
+    ASSERT_FALSE(out.empty());
+    expectPartition(out, *c);
+  }
+}
+
+TEST(Robustness, CoplanarPoints) {
+  // A regular grid (equal distances everywhere: ties in every neighbour search and in the
+  // centrality) and random points in a tilted disk.
+  Cloud::Ptr grid(new Cloud), disk(new Cloud);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      grid->push_back(pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), 0));
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  while (disk->size() < 1500) {
+    const float a = u(rng), b = u(rng);
+    if (a * a + b * b <= 1)
+      disk->push_back(pcl::PointXYZ(a, b, 0.5f * a - 0.25f * b));
+  }
+  for (const auto& c : {grid, disk}) {
+    const Segments out = segment(c);
+    ASSERT_FALSE(out.empty());
+    expectPartition(out, *c);
+  }
+}
+
+TEST(Robustness, SeveralFarApartObjects) {
+  // Four hands far apart (1e3 and 1e5 units): no segment spans two of them.
+  const LabeledShape hand = makeHand(1500, 6);
+  const float offsets[4][3] = {{0, 0, 0}, {1e3f, 0, 0}, {0, -1e3f, 0}, {0, 0, 1e5f}};
+  Cloud::Ptr c(new Cloud);
+  std::vector<int> object;
+  for (int o = 0; o < 4; ++o)
+    for (const auto& p : *hand.cloud) {
+      c->push_back(pcl::PointXYZ(p.x + offsets[o][0], p.y + offsets[o][1], p.z + offsets[o][2]));
+      object.push_back(o);
+    }
+  const Segments out = segment(c);
+  ASSERT_GE(out.size(), 4u);
+  expectPartition(out, *c);
+  for (const auto& s : out)
+    for (int i : s.indices)
+      ASSERT_EQ(object[i], object[s.indices.front()]) << "a segment spans two objects";
+}
+
+TEST(Robustness, DenseClusterWithOneFarOutlier) {
+  // The outlier is its own connected component, so its own segment; the rest is segmented
+  // as without it.
+  const LabeledShape hand = makeHand(3000, 8);
+  Cloud::Ptr c(new Cloud(*hand.cloud));
+  c->push_back(pcl::PointXYZ(1e4f, -3e3f, 5e2f));
+  const Segments with = segment(c, [](Seg& s) { s.setNumberOfSegments(7); });
+  const Segments without = segment(hand.cloud, [](Seg& s) { s.setNumberOfSegments(6); });
+  ASSERT_FALSE(with.empty());
+  const auto label = expectPartition(with, *c);
+  const int outlier = static_cast<int>(c->size() - 1);
+  const bool alone = with.back().indices == std::vector<int>{outlier};
+  std::vector<int> a(label.begin(), label.end() - 1);
+  const double ri = randIndex(a, segmentsToLabels(without, hand.cloud->size()));
+  std::printf("hand + far outlier vs hand: Rand index %.4f; outlier %s\n", ri,
+              alone ? "alone" : "shares a segment");
+  EXPECT_TRUE(alone) << "the outlier shares a segment";
+  EXPECT_GE(ri, 0.99);
+}
+
+TEST(Robustness, KnnGraphDropsTheEdgesOfALoneFarPoint) {
+  // Points 1 apart on a line, k = 2: kNN radius 1 inside, 2 at the end point 49. A single
+  // point p beyond the end has 49 and 48 as its nearest; an edge is used unless it is over 10
+  // times the radius of the point it reaches. At 15 beyond: p-49 (15 <= 20) is used, p-48
+  // (16 > 10) is not; at 25 beyond neither is, and p is on its own.
+  for (const float gap : {15.0f, 25.0f}) {
+    std::vector<float> xyz;
+    for (int i = 0; i < 50; ++i)
+      xyz.insert(xyz.end(), {static_cast<float>(i), 0, 0});
+    xyz.insert(xyz.end(), {49 + gap, 0, 0});
+    const auto knn = pcl_ncut_seg::test::bruteForceKnn(xyz, 2);
+    const pcl_ncut_seg::CsrGraph g =
+        pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), 51, knn.data(), 2);
+    std::vector<std::uint32_t> component;
+    EXPECT_EQ(pcl_ncut_seg::connectedComponents(g, component), gap < 20 ? 1u : 2u) << gap;
+    EXPECT_EQ(g.degree(50), gap < 20 ? 1u : 0u) << gap;
+  }
+}
+
+TEST(Robustness, ScaledModelsSegmentTheSame) {
+  // A unit-size model (the hand is 2.2 units tall) scaled by 1e-3 and 1e3: Rand index against
+  // the original's segmentation at least 0.99.
+  const LabeledShape hand = makeHand(3000, 9);
+  const auto six = [](Seg& s) { s.setNumberOfSegments(6); };
+  const auto reference = segmentsToLabels(segment(hand.cloud, six), hand.cloud->size());
+  const auto by_threshold = segmentsToLabels(segment(hand.cloud), hand.cloud->size());
+  for (const double scale : {1e-3, 1e3}) {
+    const Cloud::Ptr c = transformed(*hand.cloud, scale, 0);
+    const double ri = randIndex(expectPartition(segment(c, six), *c), reference);
+    const double ri_t = randIndex(expectPartition(segment(c), *c), by_threshold);
+    std::printf("hand scaled by %g: Rand index vs original %.4f (6 segments), %.4f (threshold)\n",
+                scale, ri, ri_t);
+    EXPECT_GE(ri, 0.99) << scale;
+    EXPECT_GE(ri_t, 0.99) << scale;
+  }
+}
+
+TEST(Robustness, ModelFarFromTheOrigin) {
+  // The hand moved 1e4 away from the origin. The library loses nothing beyond what float
+  // coordinates at 1e4 lost already (they are 2^-10 apart there): the moved cloud segments
+  // exactly as the same points moved back in double.
+  const LabeledShape hand = makeHand(3000, 9);
+  const auto six = [](Seg& s) { s.setNumberOfSegments(6); };
+  const Cloud::Ptr moved = transformed(*hand.cloud, 1.0, 1e4);
+  const Cloud::Ptr back = transformed(*moved, 1.0, -1e4); // exact: float values near 0
+  const auto labels = expectPartition(segment(moved, six), *moved);
+  EXPECT_EQ(labels, segmentsToLabels(segment(back, six), back->size()));
+  EXPECT_EQ(expectPartition(segment(moved), *moved), segmentsToLabels(segment(back), back->size()));
+  // Against the unrounded original.
+  const double ri = randIndex(labels, segmentsToLabels(segment(hand.cloud, six), 3000));
+  std::printf("hand moved by 1e4: Rand index vs original %.4f (6 segments)\n", ri);
+  if (ri < 0.99)
+    GTEST_SKIP() << "known limitation (README): rounding the input to floats at 1e4 moves "
+                    "points by up to 4.9e-4, and a random jitter of 5e-4 changes the "
+                    "segmentation as much (Rand index 0.93); Rand index "
+                 << ri << " < 0.99";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Indices.
+
+TEST(Robustness, BadIndicesSayWhy) {
+  Cloud::Ptr c = makeDumbbell(500, 2).cloud;
+  Seg seg;
+  seg.setInputCloud(c);
+  for (const int bad : {static_cast<int>(c->size()), -1, INT_MAX, INT_MIN}) {
+    pcl::IndicesPtr idx(new pcl::Indices{0, 1, bad, 3});
+    seg.setIndices(idx);
+    expectErrorAndNothing(seg, extractCapturing(seg), "out of range");
+  }
+  seg.setIndices(pcl::IndicesPtr(new pcl::Indices));
+  expectErrorAndNothing(seg, extractCapturing(seg), "no finite point");
+  // Indices that select only NaN points.
+  Cloud::Ptr mixed(new Cloud(*c));
+  mixed->push_back(pcl::PointXYZ(kNaN, 0, 0));
+  mixed->push_back(pcl::PointXYZ(0, kInf, 0));
+  seg.setInputCloud(mixed);
+  seg.setIndices(pcl::IndicesPtr(new pcl::Indices{501, 500, 501}));
+  expectErrorAndNothing(seg, extractCapturing(seg), "no finite point");
+}
+
+TEST(Robustness, RepeatedAndUnsortedIndicesCountOnce) {
+  // Shuffled, with repeats and NaN points selected: the same segments as the sorted set of
+  // finite selected points, and a warning about the repeats.
+  Cloud::Ptr c(new Cloud(*makeDumbbell(1500, 3).cloud));
+  for (int i = 0; i < 20; ++i)
+    c->push_back(pcl::PointXYZ(kNaN, kNaN, kNaN));
+  pcl::Indices sorted;
+  for (int i = 0; i < static_cast<int>(c->size()); i += 3)
+    sorted.push_back(i);
+  pcl::IndicesPtr messy(new pcl::Indices(sorted));
+  messy->insert(messy->end(), sorted.begin(), sorted.begin() + 100);
+  std::mt19937 rng(11);
+  std::shuffle(messy->begin(), messy->end(), rng);
+
+  Seg a, b;
+  a.setInputCloud(c);
+  a.setIndices(pcl::IndicesPtr(new pcl::Indices(sorted)));
+  b.setInputCloud(c);
+  b.setIndices(messy);
+  Segments sa;
+  a.extract(sa);
+  const Extracted rb = extractCapturing(b);
+  ASSERT_FALSE(sa.empty());
+  expectPartition(rb.segments, *c, &sorted);
+  EXPECT_NE(rb.err.find("100 repeated indices ignored"), std::string::npos) << rb.err;
+  ASSERT_EQ(sa.size(), rb.segments.size());
+  for (std::size_t s = 0; s < sa.size(); ++s)
+    EXPECT_EQ(sa[s].indices, rb.segments[s].indices);
+}
+
+TEST(Robustness, PointIndicesOnAnOrganizedCloud) {
+  // A region of interest of an organized cloud, given as pcl::PointIndices.
+  const std::uint32_t w = 50, h = 40;
+  Cloud::Ptr organized(new Cloud(w, h));
+  pcl::PointIndices::Ptr roi(new pcl::PointIndices);
+  for (std::uint32_t v = 0; v < h; ++v)
+    for (std::uint32_t u = 0; u < w; ++u) {
+      (*organized)(u, v) = (u + v) % 7 == 0 ? pcl::PointXYZ(kNaN, kNaN, kNaN)
+                                            : pcl::PointXYZ(0.1f * u, 0.1f * v, 0.01f * u * v);
+      if (u >= 10 && u < 40 && v >= 5 && v < 30)
+        roi->indices.push_back(static_cast<int>(v * w + u));
+    }
+  Seg seg;
+  seg.setInputCloud(organized);
+  seg.setIndices(pcl::PointIndicesConstPtr(roi));
+  const Extracted r = extractCapturing(seg);
+  ASSERT_FALSE(r.segments.empty()) << r.err;
+  expectPartition(r.segments, *organized, &roi->indices);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every parameter at the edges of its valid range (accepted, and extract() gives a
+// partition) and just past them (rejected with a PCL_ERROR naming the setter, old value kept).
+
+namespace {
+
+struct ParamCase {
+  const char* setter;
+  std::function<void(Seg&)> set;
+  std::function<bool(const Seg&)> took; ///< the getter shows the new value
+};
+
+std::vector<ParamCase> validEdges() {
+  const double dmin = std::numeric_limits<double>::denorm_min();
+  const double dmax = std::numeric_limits<double>::max();
+  std::vector<ParamCase> v;
+  v.push_back({"setNumberOfNeighbours", [](Seg& s) { s.setNumberOfNeighbours(2); },
+               [](const Seg& s) { return s.getNumberOfNeighbours() == 2; }});
+  v.push_back({"setNumberOfNeighbours", [](Seg& s) { s.setNumberOfNeighbours(INT_MAX); },
+               [](const Seg& s) { return s.getNumberOfNeighbours() == INT_MAX; }});
+  for (int n : {0, 1, INT_MAX})
+    v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
+                 [n](const Seg& s) { return s.getNumberOfSamples() == n; }});
+  for (float f : {0.0f, 1.0f}) {
+    v.push_back({"setCrossingFraction", [f](Seg& s) { s.setCrossingFraction(f); },
+                 [f](const Seg& s) { return s.getCrossingFraction() == f; }});
+    v.push_back({"setAreaFraction", [f](Seg& s) { s.setAreaFraction(f); },
+                 [f](const Seg& s) { return s.getAreaFraction() == f; }});
+    v.push_back({"setHeightFraction", [f](Seg& s) { s.setHeightFraction(f); },
+                 [f](const Seg& s) { return s.getHeightFraction() == f; }});
+  }
+  for (double x : {dmin, 1e-300, 1e300, dmax}) {
+    v.push_back(
+        {"setBeta", [x](Seg& s) { s.setBeta(x); }, [x](const Seg& s) { return s.getBeta() == x; }});
+    v.push_back({"setAlpha1", [x](Seg& s) { s.setAlpha1(x); },
+                 [x](const Seg& s) { return s.getAlpha1() == x; }});
+    v.push_back({"setAlpha2", [x](Seg& s) { s.setAlpha2(x); },
+                 [x](const Seg& s) { return s.getAlpha2() == x; }});
+  }
+  for (double x : {0.0, dmax})
+    v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
+                 [x](const Seg& s) { return s.getThreshold() == x; }});
+  for (int n : {0, 1, INT_MAX})
+    v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
+                 [n](const Seg& s) { return s.getNumberOfSegments() == n; }});
+  for (int n : {1, INT_MAX})
+    v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
+                 [n](const Seg& s) { return s.getNumberOfSplitValues() == n; }});
+  for (unsigned n : {0u, 1u, 64u, UINT_MAX})
+    v.push_back({"setNumberOfThreads", [n](Seg& s) { s.setNumberOfThreads(n); },
+                 [n](const Seg& s) { return s.getNumberOfThreads() == n; }});
+  return v;
+}
+
+std::vector<ParamCase> justPast() {
+  const double dmin = std::numeric_limits<double>::denorm_min();
+  const double dinf = std::numeric_limits<double>::infinity();
+  const double dnan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<ParamCase> v;
+  for (int k : {1, 0, -1, INT_MIN})
+    v.push_back({"setNumberOfNeighbours", [k](Seg& s) { s.setNumberOfNeighbours(k); },
+                 [](const Seg& s) { return s.getNumberOfNeighbours() != 10; }});
+  for (int n : {-1, INT_MIN})
+    v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
+                 [](const Seg& s) { return s.getNumberOfSamples() != 0; }});
+  for (float f : {std::nextafter(0.0f, -1.0f), std::nextafter(1.0f, 2.0f), kNaN, kInf}) {
+    v.push_back({"setCrossingFraction", [f](Seg& s) { s.setCrossingFraction(f); },
+                 [](const Seg& s) { return s.getCrossingFraction() != 0.3f; }});
+    v.push_back({"setAreaFraction", [f](Seg& s) { s.setAreaFraction(f); },
+                 [](const Seg& s) { return s.getAreaFraction() != 0.01f; }});
+    v.push_back({"setHeightFraction", [f](Seg& s) { s.setHeightFraction(f); },
+                 [](const Seg& s) { return s.getHeightFraction() != 0.01f; }});
+  }
+  for (double x : {0.0, -0.0, -dmin, dinf, dnan}) {
+    v.push_back({"setBeta", [x](Seg& s) { s.setBeta(x); },
+                 [](const Seg& s) { return s.getBeta() != 2.0; }});
+    v.push_back({"setAlpha1", [x](Seg& s) { s.setAlpha1(x); },
+                 [](const Seg& s) { return s.getAlpha1() != 2.0; }});
+    v.push_back({"setAlpha2", [x](Seg& s) { s.setAlpha2(x); },
+                 [](const Seg& s) { return s.getAlpha2() != 0.5; }});
+  }
+  for (double x : {-dmin, dinf, dnan})
+    v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
+                 [](const Seg& s) { return s.getThreshold() != 0.02; }});
+  for (int n : {-1, INT_MIN})
+    v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
+                 [](const Seg& s) { return s.getNumberOfSegments() != 0; }});
+  for (int n : {0, -1, INT_MIN})
+    v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
+                 [](const Seg& s) { return s.getNumberOfSplitValues() != 100; }});
+  return v;
+}
+
+} // namespace
+
+TEST(Robustness, ParametersAtTheEdgesOfTheirRangeAreAcceptedAndWork) {
+  Cloud::Ptr c = makeDumbbell(800, 4).cloud;
+  for (const ParamCase& p : validEdges()) {
+    Seg seg;
+    seg.setInputCloud(c);
+    ::testing::internal::CaptureStderr();
+    p.set(seg);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    SCOPED_TRACE(std::string(p.setter));
+    EXPECT_TRUE(p.took(seg));
+    EXPECT_EQ(err.find(p.setter), std::string::npos) << err;
+    const Extracted r = extractCapturing(seg);
+    ASSERT_FALSE(r.segments.empty()) << r.err;
+    expectPartition(r.segments, *c);
+  }
+}
+
+TEST(Robustness, ParametersJustPastTheirRangeAreRejected) {
+  for (const ParamCase& p : justPast()) {
+    Seg seg;
+    ::testing::internal::CaptureStderr();
+    p.set(seg);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    SCOPED_TRACE(std::string(p.setter));
+    EXPECT_FALSE(p.took(seg)) << "a value past the range was taken";
+    EXPECT_NE(err.find(std::string("[pcl::SupernodeNCutSegmentation::") + p.setter + "]"),
+              std::string::npos)
+        << err;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Determinism: bit-identical output across runs and thread counts.
+
+namespace {
+struct Fingerprint {
+  std::vector<std::uint32_t> labels;
+  std::vector<float> centrality;
+  std::vector<int> supernodes, refined;
+  std::vector<double> ncuts;
+};
+
+Fingerprint fingerprint(const Cloud::Ptr& cloud, unsigned threads, int segments) {
+  Seg seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfThreads(threads);
+  seg.setNumberOfSegments(segments);
+  Segments out;
+  seg.extract(out);
+  Fingerprint f;
+  const auto labeled = seg.getLabeledCloud(); // keep the cloud alive through the loop
+  for (const auto& p : *labeled)
+    f.labels.push_back(p.label);
+  f.centrality = seg.getCentrality();
+  f.supernodes = seg.getSupernodeLabels(false);
+  f.refined = seg.getSupernodeLabels(true);
+  for (const auto& node : seg.getHierarchy().nodes)
+    f.ncuts.push_back(node.ncut);
+  return f;
+}
+
+template <typename T> bool bitIdentical(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+} // namespace
+
+TEST(Determinism, BitIdenticalAcrossRunsAndThreadCounts) {
+  // Shapes with many components, with ties (a regular grid), and with duplicates.
+  Cloud::Ptr grid(new Cloud);
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      grid->push_back(
+          pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), (i - 15) * (i - 15) * 0.05f));
+  Cloud::Ptr dup(new Cloud(*makeDumbbell(1000, 5).cloud));
+  *dup += *dup;
+  const struct {
+    const char* name;
+    Cloud::Ptr cloud;
+    int segments;
+  } cases[] = {{"hand", makeHand(3000, 12).cloud, 0},
+               {"quadruped", makeQuadruped(3000, 13).cloud, 7},
+               {"two objects", makeTwoObjects(2000, 14).cloud, 0},
+               {"grid", grid, 4},
+               {"duplicated dumbbell", dup, 3}};
+  for (const auto& cs : cases) {
+    SCOPED_TRACE(cs.name);
+    const Fingerprint ref = fingerprint(cs.cloud, 1, cs.segments);
+    ASSERT_EQ(ref.labels.size(), cs.cloud->size());
+    for (unsigned threads : {1u, 2u, 4u})
+      for (int run = 0; run < 2; ++run) {
+        const Fingerprint f = fingerprint(cs.cloud, threads, cs.segments);
+        EXPECT_TRUE(bitIdentical(ref.labels, f.labels)) << threads << " threads, run " << run;
+        EXPECT_TRUE(bitIdentical(ref.centrality, f.centrality)) << threads << " threads";
+        EXPECT_TRUE(bitIdentical(ref.supernodes, f.supernodes)) << threads << " threads";
+        EXPECT_TRUE(bitIdentical(ref.refined, f.refined)) << threads << " threads";
+        EXPECT_TRUE(bitIdentical(ref.ncuts, f.ncuts)) << threads << " threads";
+      }
+  }
+}

@@ -1,0 +1,351 @@
+/*
+ * Bad and degenerate input through the pcl_ncut_seg command: each case either fails cleanly
+ * (non-zero exit, one line on stderr, no file written) or writes a labelling in which every
+ * finite point has a segment (label >= 1) and every other point label 0, the same labels the
+ * library gives. test_tool.cpp covers the command line itself (missing and malformed files, an
+ * empty or all-NaN cloud, bad option values); this file covers degenerate clouds and the edges
+ * of every option's range.
+ */
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+#include <support/metrics.h>
+#include <support/shapes.h>
+
+#include <pcl/common/point_tests.h>
+#include <pcl/io/pcd_io.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using Cloud = pcl::PointCloud<pcl::PointXYZ>;
+using namespace pcl_ncut_seg::test;
+
+namespace {
+
+const std::string kTool = PCL_NCUT_SEG_TOOL;
+const float kNaN = std::numeric_limits<float>::quiet_NaN();
+const float kInf = std::numeric_limits<float>::infinity();
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::set<std::string> listDir(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir))
+    names.insert(entry.path().filename().string());
+  return names;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  const std::string plain = std::regex_replace(text, std::regex("\x1b\\[[0-9;]*m"), "");
+  std::vector<std::string> result;
+  std::stringstream ss(plain);
+  std::string line;
+  while (std::getline(ss, line))
+    result.push_back(line);
+  return result;
+}
+
+/** The library's labels for a cloud (1..t, 0 for none), with default parameters. */
+std::vector<std::uint32_t> libraryLabels(const Cloud::Ptr& cloud) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  std::vector<std::uint32_t> labels;
+  const auto labeled = seg.getLabeledCloud(); // keep the cloud alive through the loop
+  for (const auto& p : *labeled)
+    labels.push_back(p.label);
+  return labels;
+}
+
+Cloud::Ptr randomCube(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  Cloud::Ptr c(new Cloud);
+  for (std::size_t i = 0; i < n; ++i)
+    c->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
+  return c;
+}
+
+class ToolRobustness : public ::testing::Test {
+protected:
+  void SetUp() override {
+    std::string tmpl = (fs::temp_directory_path() / "pcl_ncut_seg_robust_XXXXXX").string();
+    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
+    dir_ = tmpl;
+    ASSERT_TRUE(fs::exists(kTool)) << kTool;
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  struct Result {
+    int status = -1;
+    std::string out, err;
+  };
+
+  /** Run the tool in dir_; stdout and stderr go to files outside what the tool sees. */
+  Result run(const std::string& args) const {
+    const fs::path out = dir_.string() + ".out", err = dir_.string() + ".err";
+    const std::string cmd = "cd '" + dir_.string() + "' && '" + kTool + "' " + args + " >'" +
+                            out.string() + "' 2>'" + err.string() + "'";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.status = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+    r.out = readText(out);
+    r.err = readText(err);
+    fs::remove(out);
+    fs::remove(err);
+    return r;
+  }
+
+  void save(const std::string& name, const Cloud& cloud) const {
+    ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / name).string(), cloud), 0);
+  }
+
+  /** Runs the tool on `cloud` with `options`; expects success and returns the labels, after
+   * checking that they cover every finite point and no other. */
+  std::vector<std::uint32_t> segment(const Cloud& cloud, const std::string& options = "") {
+    std::vector<std::uint32_t> labels;
+    save("in.pcd", cloud);
+    fs::remove(dir_ / "out.pcd");
+    const Result r = run("in.pcd out.pcd -quiet " + options);
+    EXPECT_EQ(r.status, 0) << "pcl_ncut_seg " << options << "\n" << r.out << r.err;
+    pcl::PointCloud<pcl::PointXYZL> out;
+    if (r.status != 0 || pcl::io::loadPCDFile((dir_ / "out.pcd").string(), out) != 0) {
+      ADD_FAILURE() << "no output for " << options;
+      return labels;
+    }
+    EXPECT_EQ(out.size(), cloud.size());
+    EXPECT_EQ(out.width, cloud.width);
+    EXPECT_EQ(out.height, cloud.height);
+    std::size_t wrong = 0;
+    for (std::size_t i = 0; i < out.size() && i < cloud.size(); ++i) {
+      wrong += (out[i].label > 0) != pcl::isXYZFinite(cloud[i]);
+      labels.push_back(out[i].label);
+    }
+    EXPECT_EQ(wrong, 0u) << "points labelled but not finite, or finite but not labelled";
+    return labels;
+  }
+
+  /** The tool fails cleanly: non-zero exit, one line on stderr, no new file. */
+  void expectCleanFailure(const std::string& args) {
+    SCOPED_TRACE("pcl_ncut_seg " + args);
+    const std::set<std::string> before = listDir(dir_);
+    const Result r = run(args);
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.status, -1) << "the tool crashed";
+    EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_EQ(listDir(dir_), before) << "the run left files behind";
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(ToolRobustness, NonFiniteCloudsFailCleanly) {
+  Cloud bad;
+  for (int i = 0; i < 60; ++i)
+    bad.push_back(i % 3 == 0   ? pcl::PointXYZ(kInf, 0, 0)
+                  : i % 3 == 1 ? pcl::PointXYZ(0, 0, -kInf)
+                               : pcl::PointXYZ(kNaN, 1, 2));
+  bad.is_dense = false;
+  save("bad.pcd", bad);
+  expectCleanFailure("bad.pcd out.pcd");
+  Cloud organized(8, 5, pcl::PointXYZ(kNaN, kNaN, kNaN));
+  organized.is_dense = false;
+  save("organized.pcd", organized);
+  expectCleanFailure("organized.pcd out.pcd");
+}
+
+TEST_F(ToolRobustness, NonFinitePointsGetLabelZeroAndChangeNothingElse) {
+  const Cloud::Ptr clean = makeDumbbell(1500, 1).cloud;
+  Cloud dirty;
+  std::vector<std::size_t> where;
+  for (std::size_t i = 0; i < clean->size(); ++i) {
+    if (i % 50 == 0)
+      dirty.push_back(pcl::PointXYZ(kNaN, 0, 0));
+    if (i % 70 == 0)
+      dirty.push_back(pcl::PointXYZ(1, -kInf, 0));
+    where.push_back(dirty.size());
+    dirty.push_back((*clean)[i]);
+  }
+  dirty.is_dense = false;
+  const auto a = segment(*clean), b = segment(dirty);
+  ASSERT_EQ(b.size(), dirty.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    ASSERT_EQ(a[i], b[where[i]]);
+}
+
+TEST_F(ToolRobustness, OrganizedCloudWithNanHoles) {
+  const std::uint32_t w = 64, h = 48;
+  Cloud::Ptr organized(new Cloud(w, h));
+  for (std::uint32_t v = 0; v < h; ++v)
+    for (std::uint32_t u = 0; u < w; ++u) {
+      const float x = u * 0.05f, y = v * 0.05f;
+      const bool hole = (u > 20 && u < 30 && v > 10 && v < 30) || (u * 7 + v * 3) % 11 == 0;
+      (*organized)(u, v) =
+          hole ? pcl::PointXYZ(kNaN, kNaN, kNaN)
+               : pcl::PointXYZ(x, y, 0.5f * std::exp(-((x - 1) * (x - 1) + (y - 1) * (y - 1))));
+    }
+  organized->is_dense = false;
+  const auto labels = segment(*organized); // checks the layout is kept
+  EXPECT_EQ(labels, libraryLabels(organized));
+}
+
+TEST_F(ToolRobustness, FewPoints) {
+  // 1, 2, k and k + 1 points (k = 10), and fewer points than a k of 50.
+  for (std::size_t n : {1u, 2u, 10u, 11u}) {
+    const Cloud::Ptr c = randomCube(n, n);
+    const auto labels = segment(*c);
+    EXPECT_EQ(labels, libraryLabels(c)) << n << " points";
+  }
+  segment(*randomCube(7, 7), "-k 50 -segments 3");
+}
+
+TEST_F(ToolRobustness, DuplicatedPoints) {
+  Cloud same;
+  for (int i = 0; i < 2000; ++i)
+    same.push_back(pcl::PointXYZ(0.25f, 0.5f, -1.0f));
+  const auto one = segment(same);
+  EXPECT_EQ(std::set<std::uint32_t>(one.begin(), one.end()), std::set<std::uint32_t>{1});
+  // Every point of a shape written twice: copies get their original's label.
+  const Cloud::Ptr shape = makeDumbbell(1000, 2).cloud;
+  Cloud twice(*shape);
+  twice += *shape;
+  const auto labels = segment(twice, "-segments 3");
+  ASSERT_EQ(labels.size(), twice.size());
+  for (std::size_t i = 0; i < shape->size(); ++i)
+    ASSERT_EQ(labels[i], labels[i + shape->size()]);
+}
+
+TEST_F(ToolRobustness, CollinearAndCoplanarPoints) {
+  Cloud line, plane;
+  for (int i = 0; i < 800; ++i)
+    line.push_back(pcl::PointXYZ(0.01f * i, -0.02f * i, 3.0f));
+  for (int i = 0; i < 35; ++i)
+    for (int j = 0; j < 35; ++j)
+      plane.push_back(pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), 1.0f));
+  segment(line);
+  segment(plane);
+  segment(plane, "-segments 4");
+}
+
+TEST_F(ToolRobustness, FarApartObjectsNeverShareASegment) {
+  const Cloud::Ptr hand = makeHand(1200, 3).cloud;
+  Cloud c;
+  for (const float offset : {0.0f, 500.0f, -2e4f})
+    for (const auto& p : *hand)
+      c.push_back(pcl::PointXYZ(p.x + offset, p.y, p.z - offset));
+  const auto labels = segment(c);
+  ASSERT_EQ(labels.size(), c.size());
+  std::vector<std::set<std::uint32_t>> per_object(3);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    per_object[i / hand->size()].insert(labels[i]);
+  for (std::size_t a = 0; a < 3; ++a)
+    for (std::size_t b = a + 1; b < 3; ++b)
+      for (std::uint32_t label : per_object[a])
+        EXPECT_EQ(per_object[b].count(label), 0u) << "label " << label << " on two objects";
+}
+
+TEST_F(ToolRobustness, ScaledModelsSegmentTheSame) {
+  const Cloud::Ptr hand = makeHand(2500, 5).cloud;
+  const auto reference = segment(*hand, "-segments 6");
+  const std::vector<int> ref(reference.begin(), reference.end());
+  for (const double scale : {1e-3, 1e3}) {
+    Cloud c;
+    for (const auto& p : *hand)
+      c.push_back(pcl::PointXYZ(static_cast<float>(p.x * scale), static_cast<float>(p.y * scale),
+                                static_cast<float>(p.z * scale)));
+    const auto labels = segment(c, "-segments 6");
+    const double ri = randIndex(std::vector<int>(labels.begin(), labels.end()), ref);
+    std::printf("tool, hand scaled by %g: Rand index vs original %.4f\n", scale, ri);
+    EXPECT_GE(ri, 0.99);
+  }
+}
+
+TEST_F(ToolRobustness, EveryOptionAtTheEdgesOfItsRange) {
+  const Cloud::Ptr shape = makeDumbbell(700, 3).cloud;
+  for (const char* options : {"-k 2",
+                              "-k 2147483647",
+                              "-samples 0",
+                              "-samples 1",
+                              "-samples 2147483647",
+                              "-crossing 0",
+                              "-crossing 1",
+                              "-area 0",
+                              "-area 1",
+                              "-height 0",
+                              "-height 1",
+                              "-beta 1e-300",
+                              "-beta 1e300",
+                              "-alpha1 1e-300",
+                              "-alpha1 1e300",
+                              "-alpha2 1e-300",
+                              "-alpha2 1e300",
+                              "-threshold 0",
+                              "-threshold 1e300",
+                              "-segments 1",
+                              "-segments 2147483647",
+                              "-splits 1",
+                              "-splits 2147483647",
+                              "-threads 0",
+                              "-threads 1",
+                              "-threads 2147483647"}) {
+    SCOPED_TRACE(options);
+    segment(*shape, options);
+  }
+}
+
+TEST_F(ToolRobustness, EveryOptionJustPastItsRangeFailsCleanly) {
+  save("in.pcd", *makeDumbbell(300, 4).cloud);
+  for (const char* options : {"-k 1",
+                              "-k 2147483648",
+                              "-samples -1",
+                              "-samples 2147483648",
+                              "-crossing -1e-30",
+                              "-crossing 1.0000001",
+                              "-area -1e-30",
+                              "-area 1.0000001",
+                              "-height -1e-30",
+                              "-height 1.0000001",
+                              "-beta 0",
+                              "-beta -1e-300",
+                              "-beta 1e400",
+                              "-alpha1 0",
+                              "-alpha1 -1e-300",
+                              "-alpha1 1e400",
+                              "-alpha2 0",
+                              "-alpha2 -1e-300",
+                              "-alpha2 1e400",
+                              "-threshold -1e-300",
+                              "-threshold 1e400",
+                              "-segments 0",
+                              "-segments 2147483648",
+                              "-splits 0",
+                              "-splits 2147483648",
+                              "-threads -1",
+                              "-threads 2147483648"})
+    expectCleanFailure(std::string("in.pcd out.pcd ") + options);
+}
+
+} // namespace
