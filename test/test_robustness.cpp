@@ -590,7 +590,7 @@ std::vector<ParamCase> justPast() {
   }
   for (double x : {-dmin, dinf, dnan})
     v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
-                 [](const Seg& s) { return s.getThreshold() != 0.02; }});
+                 [](const Seg& s) { return s.getThreshold() != Seg().getThreshold(); }});
   for (int n : {-1, INT_MIN})
     v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
                  [](const Seg& s) { return s.getNumberOfSegments() != 0; }});

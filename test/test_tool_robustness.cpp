@@ -287,9 +287,9 @@ TEST_F(ToolRobustness, EveryOptionAtTheEdgesOfItsRange) {
   const Cloud::Ptr shape = makeDumbbell(700, 3).cloud;
   for (const char* options : {"-k 2",
                               "-k 2147483647",
-                              "-samples 0",
-                              "-samples 1",
-                              "-samples 2147483647",
+                              "-cen_samples 0",
+                              "-cen_samples 1",
+                              "-cen_samples 2147483647",
                               "-crossing 0",
                               "-crossing 1",
                               "-area 0",
@@ -320,8 +320,8 @@ TEST_F(ToolRobustness, EveryOptionJustPastItsRangeFailsCleanly) {
   save("in.pcd", *makeDumbbell(300, 4).cloud);
   for (const char* options : {"-k 1",
                               "-k 2147483648",
-                              "-samples -1",
-                              "-samples 2147483648",
+                              "-cen_samples -1",
+                              "-cen_samples 2147483648",
                               "-crossing -1e-30",
                               "-crossing 1.0000001",
                               "-area -1e-30",

@@ -680,12 +680,19 @@ void ProgressBar::update(const char* phase, double fraction) {
     known_ = false;
   }
   fraction_ = std::clamp(fraction, 0.0, 1.0);
+  const bool was_known = known_;
   if (fraction > 0.0 && fraction < 1.0)
     known_ = true;
   if (fraction >= 1.0) {
     draw(true);
     phase_.clear();
+    return;
   }
+  // Redraw now rather than wait for the thread when the bar changes kind or is stale, so that
+  // what is shown does not depend on how the phase's time falls against the thread's period.
+  const auto now = std::chrono::steady_clock::now();
+  if (!drawn_ || known_ != was_known || now - last_draw_ >= std::chrono::milliseconds(100))
+    draw(false);
 }
 
 std::function<void(const char*, double)> ProgressBar::callback() {
@@ -732,6 +739,7 @@ void ProgressBar::draw(bool final_clear) {
                elapsed);
   std::fflush(stderr);
   drawn_ = true;
+  last_draw_ = std::chrono::steady_clock::now();
 }
 
 bool progressWanted(const Flags& flags) {

@@ -144,7 +144,8 @@ bool writePcd(AtomicFile& file, const pcl::PCLPointCloud2& blob, bool binary);
 /// \{
 /** \brief A progress bar on stderr for phases that take longer than a delay (1 s, or the
  * PCL_NCUT_SEG_PROGRESS_DELAY environment variable in seconds). A background thread redraws
- * it; the line is cleared when the phase ends. Does nothing when disabled. */
+ * it every 100 ms; a report redraws it at once when the phase's first fraction arrives or the
+ * last drawing is 100 ms old. The line is cleared when the phase ends. Does nothing when disabled. */
 class ProgressBar {
 public:
   explicit ProgressBar(bool enabled);
@@ -169,6 +170,7 @@ private:
   bool known_ = false; ///< a fraction strictly inside (0, 1) was reported for this phase
   bool drawn_ = false;
   std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point last_draw_;
 };
 
 /** \brief True when stderr is a terminal and -quiet is not given. */
