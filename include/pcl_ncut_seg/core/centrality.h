@@ -6,6 +6,7 @@
 #include <pcl_ncut_seg/core/csr_graph.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -17,6 +18,9 @@ struct Centrality {
   std::vector<std::uint32_t> component; ///< per vertex, its connected component
   std::size_t num_components = 0;
 };
+
+/** \brief Progress callback: the fraction of the work done, in [0, 1]. */
+using ProgressFn = std::function<void(double)>;
 
 /** \brief Approximate centrality f(p) = 1/|U| sum_{q in U} g(p, q) (eq. 1).
  *
@@ -30,8 +34,11 @@ struct Centrality {
  * \param[in] graph        the kNN graph
  * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))
  * \param[in] num_threads  threads for the full searches; 0 = all available
+ * \param[in] progress     if set, called from the calling thread with the fraction of the full
+ *                         searches done
  */
-Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads);
+Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
+                             const ProgressFn& progress = {});
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
  * Unreachable vertices get +infinity. */

@@ -10,10 +10,18 @@
 #include <pcl/console/print.h>
 #include <pcl/search/kdtree.h>
 
+#include <pcl_ncut_seg/core/morton.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+
+#ifdef _OPENMP
+#include <omp.h>
+#else
+inline int omp_get_max_threads() { return 1; }
+#endif
 
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
@@ -265,21 +273,29 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     std::vector<std::int64_t> local(cloud_size, -1);
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
-    pcl::Indices nn;
-    std::vector<float> sqr;
-    for (std::size_t i = 0; i < n; ++i) {
-      nn.clear();
-      search_->nearestKSearch((*input_)[valid[i]], static_cast<int>(k + 1), nn, sqr);
-      std::size_t j = 0;
-      for (const auto q : nn) {
-        if (j == k)
-          break;
-        if (q < 0 || static_cast<std::size_t>(q) >= cloud_size)
-          continue;
-        const std::int64_t lq = local[q];
-        if (lq < 0 || static_cast<std::size_t>(lq) == i)
-          continue;
-        knn[i * k + j++] = static_cast<std::uint32_t>(lq);
+    // Queries in Morton (Z-order) order visit the search tree coherently; the result does
+    // not depend on the order.
+    const std::vector<std::uint32_t> queries = pcl_ncut_seg::mortonOrder(xyz.data(), n);
+#pragma omp parallel num_threads(num_threads_ > 0 ? static_cast<int>(num_threads_) : omp_get_max_threads())
+    {
+      pcl::Indices nn;
+      std::vector<float> sqr;
+#pragma omp for schedule(dynamic, 256)
+      for (std::ptrdiff_t qi = 0; qi < static_cast<std::ptrdiff_t>(n); ++qi) {
+        const std::size_t i = queries[qi];
+        nn.clear();
+        search_->nearestKSearch((*input_)[valid[i]], static_cast<int>(k + 1), nn, sqr);
+        std::size_t j = 0;
+        for (const auto q : nn) {
+          if (j == k)
+            break;
+          if (q < 0 || static_cast<std::size_t>(q) >= cloud_size)
+            continue;
+          const std::int64_t lq = local[q];
+          if (lq < 0 || static_cast<std::size_t>(lq) == i)
+            continue;
+          knn[i * k + j++] = static_cast<std::uint32_t>(lq);
+        }
       }
     }
   }

@@ -1,0 +1,134 @@
+// Sec. 4.1's geodesic distances: Dial's bucket queue and a cache-friendly vertex order.
+#include <pcl_ncut_seg/core/shortest_paths.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace pcl_ncut_seg {
+namespace {
+constexpr std::uint32_t kNotQueued = std::numeric_limits<std::uint32_t>::max();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+} // namespace
+
+BucketDijkstra::BucketDijkstra(const CsrGraph& graph)
+    : graph_(graph), queued_(graph.numVertices(), kNotQueued) {
+  double sum = 0.0;
+  float longest = 0.0f;
+  for (float w : graph.lengths) {
+    sum += w;
+    longest = std::max(longest, w);
+  }
+  const std::size_t m = graph.lengths.size();
+  double width = m > 0 && sum > 0.0 ? 2.0 * sum / static_cast<double>(m) : 1.0;
+  // An outlier edge must not need millions of buckets: at most 2^16 + 2 buckets of the circle.
+  width = std::max(width, static_cast<double>(longest) / 65536.0);
+  inv_width_ = 1.0 / width;
+  // Pending entries lie within longest / width + 1 buckets of the current one.
+  std::size_t count = 2;
+  while (count < static_cast<std::size_t>(longest * inv_width_) + 2)
+    count *= 2;
+  buckets_.resize(count);
+  mask_ = count - 1;
+}
+
+void BucketDijkstra::run(std::uint32_t source, float* dist, const float* bound,
+                         std::vector<std::uint32_t>* touched) {
+  // Absolute bucket numbers fit 32 bits for any graph whose diameter is < 2^32 widths.
+  auto bucketOf = [this](float d) {
+    return static_cast<std::uint32_t>(static_cast<double>(d) * inv_width_);
+  };
+  const std::uint32_t* offsets = graph_.offsets.data();
+  const std::uint32_t* targets = graph_.targets.data();
+  const float* lengths = graph_.lengths.data();
+  dist[source] = 0.0f;
+  if (touched)
+    touched->push_back(source);
+  buckets_[0].push_back(source);
+  queued_[source] = 0;
+  std::size_t pending = 1;
+  for (std::uint32_t current = 0; pending > 0; ++current) {
+    std::vector<std::uint32_t>& bucket = buckets_[current & mask_];
+    // Vertices improved within this bucket are appended to it and scanned again.
+    for (std::size_t i = 0; i < bucket.size(); ++i) {
+      const std::uint32_t v = bucket[i];
+      --pending;
+      if (queued_[v] != current)
+        continue; // stale: v was re-queued in an earlier bucket, or is queued later in this one
+      queued_[v] = kNotQueued;
+      const float dv = dist[v];
+      if (bound && dv >= bound[v])
+        continue;
+      for (std::uint32_t e = offsets[v]; e < offsets[v + 1]; ++e) {
+        const std::uint32_t t = targets[e];
+        const float nd = dv + lengths[e];
+        if (nd < dist[t]) {
+          if (touched && dist[t] == kInf)
+            touched->push_back(t);
+          dist[t] = nd;
+          const std::uint32_t b = bucketOf(nd);
+          if (queued_[t] != b) {
+            queued_[t] = b;
+            buckets_[b & mask_].push_back(t);
+            ++pending;
+          }
+        }
+      }
+    }
+    bucket.clear();
+  }
+}
+
+std::vector<std::uint32_t> breadthFirstOrder(const CsrGraph& graph) {
+  const std::size_t n = graph.numVertices();
+  std::vector<std::uint32_t> order;
+  order.reserve(n);
+  std::vector<bool> seen(n, false);
+  for (std::uint32_t s = 0; s < n; ++s) {
+    if (seen[s])
+      continue;
+    seen[s] = true;
+    for (std::size_t head = order.size(), end = (order.push_back(s), order.size()); head < end;
+         end = order.size()) {
+      for (; head < end; ++head) {
+        const std::uint32_t v = order[head];
+        for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+          const std::uint32_t t = graph.targets[e];
+          if (!seen[t]) {
+            seen[t] = true;
+            order.push_back(t);
+          }
+        }
+      }
+    }
+  }
+  return order;
+}
+
+CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& order) {
+  const std::size_t n = graph.numVertices();
+  std::vector<std::uint32_t> position(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    position[order[i]] = i;
+  CsrGraph out;
+  out.offsets.resize(n + 1);
+  out.targets.resize(graph.targets.size());
+  out.lengths.resize(graph.lengths.size());
+  out.offsets[0] = 0;
+  std::vector<std::pair<std::uint32_t, float>> row;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t v = order[i];
+    row.clear();
+    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
+      row.emplace_back(position[graph.targets[e]], graph.lengths[e]);
+    std::sort(row.begin(), row.end());
+    std::uint32_t at = out.offsets[i];
+    for (const auto& [t, w] : row) {
+      out.targets[at] = t;
+      out.lengths[at++] = w;
+    }
+    out.offsets[i + 1] = at;
+  }
+  return out;
+}
+
+} // namespace pcl_ncut_seg
