@@ -57,28 +57,38 @@ std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source
 }
 
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
-                             const ProgressFn& progress) {
+                             const std::uint32_t* tie_rank, const ProgressFn& progress) {
   const std::size_t n = graph.numVertices();
   Centrality out;
   out.f.assign(n, 0.0f);
   if (n == 0)
     return out;
   out.num_components = connectedComponents(graph, out.component);
-  // The searches run on a copy of the graph in breadth-first order, where each component is a
-  // contiguous range of positions and neighbours are close in memory. Distances do not depend
-  // on the order; ties below are broken by the original vertex index.
-  const std::vector<std::uint32_t> order = breadthFirstOrder(graph);
-  std::vector<std::uint32_t> pos(n);
-  for (std::uint32_t i = 0; i < n; ++i)
-    pos[order[i]] = i;
-  const CsrGraph g = permuteGraph(graph, order);
-  // Component c occupies positions [begin[c], begin[c + 1]) (both number components in order
-  // of their smallest vertex).
+  // Searches read the graph in vertex order, so the caller's order decides how well they use
+  // the cache (the PCL front end numbers points along a Morton curve). Here components must
+  // be contiguous ranges of positions: component c occupies [begin[c], begin[c + 1]) (both
+  // number components in order of their smallest vertex). The graph is copied only when they
+  // are not. Distances do not depend on the numbering; ties below go to the smallest vertex.
   std::vector<std::uint32_t> begin(out.num_components + 1, 0);
   for (std::uint32_t v = 0; v < n; ++v)
     ++begin[out.component[v] + 1];
   for (std::size_t c = 0; c < out.num_components; ++c)
     begin[c + 1] += begin[c];
+  std::vector<std::uint32_t> order(n), pos(n);
+  {
+    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+    for (std::uint32_t v = 0; v < n; ++v) {
+      pos[v] = fill[out.component[v]]++;
+      order[pos[v]] = v;
+    }
+  }
+  bool contiguous = true;
+  for (std::uint32_t v = 0; v < n && contiguous; ++v)
+    contiguous = pos[v] == v;
+  CsrGraph permuted;
+  if (!contiguous)
+    permuted = permuteGraph(graph, order);
+  const CsrGraph& g = contiguous ? graph : permuted;
 
   std::vector<float> h(n, kInf), dist(n, kInf);
   std::vector<std::uint32_t> touched;
@@ -88,30 +98,32 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
   std::vector<double> quantum(out.num_components, 1.0);
   std::vector<std::size_t> count(out.num_components, 0);
 
-  std::uint32_t first_vertex = 0; // smallest vertex of the current component
-  std::vector<bool> started(out.num_components, false);
+  // Ties go to the smallest rank (the caller's, or the vertex index).
+  auto rank = [tie_rank](std::uint32_t v) { return tie_rank ? tie_rank[v] : v; };
+  std::vector<std::uint32_t> smallest(out.num_components, kNone); // per component
   for (std::uint32_t v = 0; v < n; ++v) {
-    const std::uint32_t c = out.component[v];
-    if (started[c])
-      continue;
-    started[c] = true;
-    first_vertex = v;
+    std::uint32_t& m = smallest[out.component[v]];
+    if (m == kNone || rank(v) < rank(m))
+      m = v;
+  }
+  for (std::uint32_t c = 0; c < out.num_components; ++c) {
+    const std::uint32_t first_vertex = smallest[c];
     const std::size_t size = begin[c + 1] - begin[c];
     const std::size_t want = std::min(
         size, num_samples > 0
                   ? num_samples
                   : static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(size)))));
-    // The largest value of x over the component's positions, ties to the smallest vertex.
+    // The largest value of x over the component's positions, ties to the smallest rank.
     auto argmax = [&](const std::vector<float>& x, float& best) {
       std::uint32_t arg = kNone;
       for (std::uint32_t p = begin[c]; p < begin[c + 1]; ++p)
-        if (x[p] > best || (x[p] == best && arg != kNone && order[p] < arg)) {
+        if (x[p] > best || (x[p] == best && arg != kNone && rank(order[p]) < rank(arg))) {
           best = x[p];
           arg = order[p];
         }
       return arg;
     };
-    // First sample: farthest from the component's smallest vertex (a deterministic choice for
+    // First sample: farthest from the component's smallest-rank vertex (a deterministic choice for
     // the arbitrary tie of step 4 when h is infinite everywhere).
     touched.clear();
     search.run(pos[first_vertex], dist.data(), nullptr, &touched);

@@ -22,7 +22,12 @@ Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times
   Analysis a;
   a.graph = std::move(graph);
   Stopwatch clock;
-  a.centrality = computeCentrality(a.graph, params.num_samples, params.num_threads);
+  const std::uint32_t* rank = params.tie_rank.empty() ? nullptr : params.tie_rank.data();
+  a.centrality =
+      params.centrality_mode == CentralityMode::Exact
+          ? computeCentrality(a.graph, params.num_samples, params.num_threads, rank)
+          : computeCoarseCentrality(a.graph, params.num_representatives, params.num_samples,
+                                    params.num_threads, rank);
   times.centrality = clock.lap();
   a.raw_supernodes = extractSupernodes(a.graph, a.centrality.f, params.crossing_fraction);
   times.supernodes = clock.lap();

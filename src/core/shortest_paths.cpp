@@ -78,32 +78,6 @@ void BucketDijkstra::run(std::uint32_t source, float* dist, const float* bound,
   }
 }
 
-std::vector<std::uint32_t> breadthFirstOrder(const CsrGraph& graph) {
-  const std::size_t n = graph.numVertices();
-  std::vector<std::uint32_t> order;
-  order.reserve(n);
-  std::vector<bool> seen(n, false);
-  for (std::uint32_t s = 0; s < n; ++s) {
-    if (seen[s])
-      continue;
-    seen[s] = true;
-    for (std::size_t head = order.size(), end = (order.push_back(s), order.size()); head < end;
-         end = order.size()) {
-      for (; head < end; ++head) {
-        const std::uint32_t v = order[head];
-        for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
-          const std::uint32_t t = graph.targets[e];
-          if (!seen[t]) {
-            seen[t] = true;
-            order.push_back(t);
-          }
-        }
-      }
-    }
-  }
-  return order;
-}
-
 CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& order) {
   const std::size_t n = graph.numVertices();
   std::vector<std::uint32_t> position(n);
@@ -114,19 +88,106 @@ CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& o
   out.targets.resize(graph.targets.size());
   out.lengths.resize(graph.lengths.size());
   out.offsets[0] = 0;
-  std::vector<std::pair<std::uint32_t, float>> row;
   for (std::uint32_t i = 0; i < n; ++i) {
     const std::uint32_t v = order[i];
-    row.clear();
-    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
-      row.emplace_back(position[graph.targets[e]], graph.lengths[e]);
-    std::sort(row.begin(), row.end());
     std::uint32_t at = out.offsets[i];
-    for (const auto& [t, w] : row) {
-      out.targets[at] = t;
-      out.lengths[at++] = w;
+    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+      out.targets[at] = position[graph.targets[e]];
+      out.lengths[at++] = graph.lengths[e];
     }
     out.offsets[i + 1] = at;
+  }
+  return out;
+}
+
+NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::uint32_t>& sources) {
+  const std::size_t n = graph.numVertices();
+  NearestSources out;
+  out.first.assign(n, kNotQueued);
+  out.second.assign(n, kNotQueued);
+  out.first_dist.assign(n, kInf);
+  out.second_dist.assign(n, kInf);
+  // Dial's buckets as in BucketDijkstra, label-correcting: a vertex is queued in the bucket of
+  // its smallest changed label and passes both labels on when scanned.
+  double sum = 0.0;
+  float longest = 0.0f;
+  for (float w : graph.lengths) {
+    sum += w;
+    longest = std::max(longest, w);
+  }
+  const std::size_t m = graph.lengths.size();
+  double width = m > 0 && sum > 0.0 ? 2.0 * sum / static_cast<double>(m) : 1.0;
+  width = std::max(width, static_cast<double>(longest) / 65536.0);
+  const double inv_width = 1.0 / width;
+  std::size_t count = 2;
+  while (count < static_cast<std::size_t>(longest * inv_width) + 2)
+    count *= 2;
+  std::vector<std::vector<std::uint32_t>> buckets(count);
+  const std::size_t mask = count - 1;
+  std::vector<std::uint32_t> queued(n, kNotQueued);
+  std::size_t pending = 0;
+  std::uint32_t current = 0;
+  auto push = [&](std::uint32_t v, float d) {
+    // A label re-sent from a vertex scanned late can fall before the current bucket; it
+    // cannot improve anything there, but must not wrap around the circle.
+    const std::uint32_t b =
+        std::max(current, static_cast<std::uint32_t>(static_cast<double>(d) * inv_width));
+    if (queued[v] != kNotQueued && queued[v] <= b)
+      return; // already waiting in an earlier (or this) bucket; it will send both labels
+    queued[v] = b;
+    buckets[b & mask].push_back(v);
+    ++pending;
+  };
+  // Offer the label (source s, distance d) to v; true if v's labels changed.
+  auto offer = [&](std::uint32_t v, std::uint32_t s, float d) {
+    if (s == out.first[v]) {
+      if (!(d < out.first_dist[v]))
+        return false;
+      out.first_dist[v] = d;
+    } else if (s == out.second[v]) {
+      if (!(d < out.second_dist[v]))
+        return false;
+      out.second_dist[v] = d;
+      if (out.second_dist[v] < out.first_dist[v]) {
+        std::swap(out.first[v], out.second[v]);
+        std::swap(out.first_dist[v], out.second_dist[v]);
+      }
+    } else if (d < out.first_dist[v]) {
+      out.second[v] = out.first[v];
+      out.second_dist[v] = out.first_dist[v];
+      out.first[v] = s;
+      out.first_dist[v] = d;
+    } else if (d < out.second_dist[v]) {
+      out.second[v] = s;
+      out.second_dist[v] = d;
+    } else {
+      return false;
+    }
+    return true;
+  };
+  for (std::uint32_t i = 0; i < sources.size(); ++i)
+    if (offer(sources[i], i, 0.0f))
+      push(sources[i], 0.0f);
+  for (; pending > 0; ++current) {
+    std::vector<std::uint32_t>& bucket = buckets[current & mask];
+    for (std::size_t i = 0; i < bucket.size(); ++i) {
+      const std::uint32_t v = bucket[i];
+      --pending;
+      if (queued[v] != current)
+        continue;
+      queued[v] = kNotQueued;
+      const std::uint32_t s1 = out.first[v], s2 = out.second[v];
+      const float d1 = out.first_dist[v], d2 = out.second_dist[v];
+      for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+        const std::uint32_t t = graph.targets[e];
+        const float w = graph.lengths[e];
+        if (offer(t, s1, d1 + w))
+          push(t, d1 + w);
+        if (s2 != kNotQueued && offer(t, s2, d2 + w))
+          push(t, d2 + w);
+      }
+    }
+    bucket.clear();
   }
   return out;
 }

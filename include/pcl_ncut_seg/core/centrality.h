@@ -34,10 +34,14 @@ using ProgressFn = std::function<void(double)>;
  * \param[in] graph        the kNN graph
  * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))
  * \param[in] num_threads  threads for the full searches; 0 = all available
+ * \param[in] tie_rank     if given, n distinct ranks: ties (the smallest vertex above) go to
+ *                         the smallest rank instead of the smallest index, so that the result
+ *                         does not depend on how the caller numbered the vertices
  * \param[in] progress     if set, called from the calling thread with the fraction of the full
  *                         searches done
  */
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
+                             const std::uint32_t* tie_rank = nullptr,
                              const ProgressFn& progress = {});
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).

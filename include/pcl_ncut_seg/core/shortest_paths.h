@@ -1,6 +1,5 @@
 /*
- * pcl_ncut_seg: fast single-source shortest paths over the kNN graph (Sec. 4.1), and a vertex
- * order that keeps graph neighbours close in memory.
+ * pcl_ncut_seg: fast shortest paths over the kNN graph for the geodesic distances of Sec. 4.1.
  */
 #pragma once
 
@@ -42,12 +41,23 @@ private:
   std::vector<std::uint32_t> queued_; ///< per vertex, the bucket of its pending entry
 };
 
-/** \brief A breadth-first vertex order (Cuthill-McKee without the degree sort), one connected
- * component after another: neighbours in the graph get nearby positions, so searches touch
- * memory in order. \return order[i], the vertex at position i. */
-std::vector<std::uint32_t> breadthFirstOrder(const CsrGraph& graph);
-
-/** \brief The graph with vertex order[i] renumbered as i (rows sorted again). */
+/** \brief The graph with vertex order[i] renumbered as i. Rows keep their edges in the input's
+ * order (no longer sorted by target): enough for searches. */
 CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& order);
+
+} // namespace pcl_ncut_seg
+
+namespace pcl_ncut_seg {
+
+/** \brief For every vertex, its two nearest sources on the graph (a two-label Voronoi
+ * diagram). A vertex with fewer than two reachable sources gets kNone and +infinity for the
+ * missing ones. Equal distances are resolved in a fixed order, so the result is reproducible. */
+struct NearestSources {
+  std::vector<std::uint32_t> first, second; ///< index into the source list
+  std::vector<float> first_dist, second_dist;
+};
+
+/** \brief Multi-source search from sources (vertex ids) keeping two labels per vertex. */
+NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::uint32_t>& sources);
 
 } // namespace pcl_ncut_seg

