@@ -66,7 +66,8 @@ public:
   void setIndices(const IndicesConstPtr& indices) override;
   void setIndices(const PointIndicesConstPtr& indices) override;
 
-  /** \brief Search method for the kNN graph (default: pcl::search::KdTree, i.e. FLANN). */
+  /** \brief Search method for the kNN graph (default: a pcl::search::KdTree, i.e. FLANN, built
+   * in extract() and released once the graph is built; getSearchMethod() then returns null). */
   void setSearchMethod(const KdTreePtr& search);
   KdTreePtr getSearchMethod() const { return search_; }
 

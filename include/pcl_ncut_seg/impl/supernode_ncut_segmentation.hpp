@@ -312,7 +312,9 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   std::vector<std::uint32_t> knn(n * std::max<std::size_t>(k, 1),
                                  std::numeric_limits<std::uint32_t>::max());
   if (k > 0) {
-    if (!search_)
+    // A search method we create is dropped after use: its tree is no use to the later phases.
+    const bool own_search = !search_;
+    if (own_search)
       search_.reset(new pcl::search::KdTree<PointT>(false));
     pcl::IndicesPtr valid_ptr(new pcl::Indices(valid.begin(), valid.end()));
     search_->setInputCloud(input_, valid_ptr);
@@ -342,8 +344,12 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
         }
       }
     }
+    if (own_search)
+      search_.reset();
   }
   pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+  std::vector<std::uint32_t>().swap(knn); // free before the expensive stage
+  std::vector<float>().swap(xyz);
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
