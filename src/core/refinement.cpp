@@ -54,11 +54,17 @@ struct Work {
     area.push_back(0.0);
     fmin.push_back(std::numeric_limits<float>::infinity());
     fmax.push_back(-std::numeric_limits<float>::infinity());
+    dirty.push_back(1);
     if (par != kNone)
       children[par].push_back(s);
     return s;
   }
+  std::vector<std::uint8_t> dirty; ///< per supernode, points gained or lost since last checked
+
   void addPoint(std::uint32_t s, std::uint32_t p, const std::vector<float>& f, double a) {
+    if (label[p] != kNone)
+      dirty[label[p]] = 1;
+    dirty[s] = 1;
     label[p] = s;
     points[s].push_back(p);
     area[s] += a;
@@ -197,7 +203,7 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   // split supernode is re-tested too.
   for (int round = 0; round < 8; ++round) {
     bool changed = false;
-    for (bool merged = changed = true; merged;) {
+    for (bool merged = true; merged;) {
       merged = false;
       for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
         if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
@@ -314,8 +320,10 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
     std::vector<std::uint32_t> region(n, kNone);
     const std::size_t before_regions = w.alive.size();
     for (std::uint32_t s = 0; s < before_regions; ++s) {
-      if (!w.alive[s] || w.points[s].empty())
+      // Only a supernode whose points changed can have split since it was last checked.
+      if (!w.alive[s] || w.points[s].empty() || !w.dirty[s])
         continue;
+      w.dirty[s] = 0;
       std::vector<std::vector<std::uint32_t>> regions;
       std::vector<std::uint32_t> stack;
       for (std::uint32_t seed : w.points[s]) {
