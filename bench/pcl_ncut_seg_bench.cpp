@@ -44,21 +44,25 @@ struct Row {
 };
 
 // The paper's Table 1 models and sizes (its prism has no counterpart here), then larger clouds.
-const std::vector<Row> kFullRows = {
-    {"hand_c", "cgal-hand.off", 4000},       {"horse_c", "horse.off", 4002},
-    {"bunny_c", "bunny.off", 4088},          {"santa_c", "santa.off", 5002},
-    {"cube", "cgal-cube-meshed.off", 9602},  {"hand_f", "cgal-hand.off", 30000},
-    {"bunny_f", "bunny.off", 34834},         {"horse_f", "horse.off", 40002},
-    {"santa_f", "santa.off", 50002},         {"block", "block.off", 180926},
-    {"armadillo", "cgal-armadillo.off", 300000}, {"armadillo", "cgal-armadillo.off", 1000000}};
+const std::vector<Row> kFullRows = {{"hand_c", "cgal-hand.off", 4000},
+                                    {"horse_c", "horse.off", 4002},
+                                    {"bunny_c", "bunny.off", 4088},
+                                    {"santa_c", "santa.off", 5002},
+                                    {"cube", "cgal-cube-meshed.off", 9602},
+                                    {"hand_f", "cgal-hand.off", 30000},
+                                    {"bunny_f", "bunny.off", 34834},
+                                    {"horse_f", "horse.off", 40002},
+                                    {"santa_f", "santa.off", 50002},
+                                    {"block", "block.off", 180926},
+                                    {"armadillo", "cgal-armadillo.off", 300000},
+                                    {"armadillo", "cgal-armadillo.off", 1000000}};
 const std::vector<Row> kQuickRows = {{"hand_c", "cgal-hand.off", 4000},
                                      {"santa_f", "santa.off", 50002},
                                      {"block", "block.off", 180926},
                                      {"armadillo", "cgal-armadillo.off", 1000000}};
 
 double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 /// A field of /proc/self/status in bytes (VmRSS, VmHWM), or 0.
@@ -153,8 +157,7 @@ int runOne(const std::string& path, std::size_t n, const std::string& method, in
     out << "knn=" << t.knn << " cen=" << t.centrality << " snod=" << t.supernodes
         << " lref=" << t.refinement << " hseg=" << t.hierarchy << " pseg=" << t.points
         << " total=" << t.total() << " m=" << seg.getNumberOfSupernodes(false)
-        << " l=" << seg.getNumberOfSupernodes(true) << " t=" << segments.size()
-        << " hash=" << hash;
+        << " l=" << seg.getNumberOfSupernodes(true) << " t=" << segments.size() << " hash=" << hash;
   }
   const std::size_t peak = procStatusBytes("VmHWM");
   out << " peak=" << (peak > base ? peak - base : 0);
@@ -327,24 +330,23 @@ int main(int argc, char** argv) {
         measure(self, data + "/models/" + row.model, row.n, method, 2, two))
       std::printf("%-8s %-10s %8zu  Cen 1 thread %7.3f  2 threads %7.3f  speed-up %.2fx  "
                   "labels %s  load %s\n",
-                  method.c_str(), row.label, row.n, one["cen"], two["cen"],
-                  one["cen"] / two["cen"], one["hash"] == two["hash"] ? "identical" : "DIFFER",
-                  loadAverage().c_str());
+                  method.c_str(), row.label, row.n, one["cen"], two["cen"], one["cen"] / two["cen"],
+                  one["hash"] == two["hash"] ? "identical" : "DIFFER", loadAverage().c_str());
   }
 
   if (lccp) {
     std::printf("\nPCL supervoxels + LCCP on the same clouds (voxel = diagonal / 100, seed = 4 "
                 "voxels)\n");
-    std::printf("%-10s %8s %8s %6s %10s %10s  %s\n", "model", "n", "LCCP s", "t",
-                "default s", "LCCP/ours", "load");
+    std::printf("%-10s %8s %8s %6s %10s %10s  %s\n", "model", "n", "LCCP s", "t", "default s",
+                "LCCP/ours", "load");
     for (std::size_t i = 0; i < rows.size(); ++i) {
       Result r;
       if (!measure(self, data + "/models/" + rows[i].model, rows[i].n, "lccp", threads, r)) {
         std::printf("%-10s %8zu  (run failed)\n", rows[i].label, rows[i].n);
         continue;
       }
-      const double ours = results["default"][i].count("total") ? results["default"][i]["total"]
-                                                               : NAN;
+      const double ours =
+          results["default"][i].count("total") ? results["default"][i]["total"] : NAN;
       std::printf("%-10s %8zu %8.3f %6.0f %10.3f %10.2f  %s\n", rows[i].label, rows[i].n,
                   r["total"], r["t"], ours, r["total"] / ours, loadAverage().c_str());
       std::fflush(stdout);

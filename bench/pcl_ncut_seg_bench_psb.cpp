@@ -106,17 +106,18 @@ int main(int argc, char** argv) {
     for (int v; in >> v;)
       counts.push_back(v);
   }
-  std::printf("%5s %7s %3s %9s %9s %9s %8s %8s\n", "model", "points", "k", "RI(F,E)",
-              "1-RI E", "1-RI F", "E s", "F s");
+  std::printf("%5s %7s %3s %9s %9s %9s %8s %8s\n", "model", "points", "k", "RI(F,E)", "1-RI E",
+              "1-RI F", "E s", "F s");
   double sum_agree = 0, sum_exact = 0, sum_fast = 0, time_exact = 0, time_fast = 0;
   int models = 0;
   for (const int id : ids) {
     const std::string name = std::to_string(id);
     pcl_ncut_seg::TriangleMesh mesh;
     std::string error;
-    if (!pcl_ncut_seg::readOff((dir / "off" / (name + ".off")).string(), mesh, &error) ||
-        id < 1 || static_cast<std::size_t>(id) > counts.size()) {
-      std::fprintf(stderr, "model %d: %s\n", id, error.empty() ? "no segment count" : error.c_str());
+    if (!pcl_ncut_seg::readOff((dir / "off" / (name + ".off")).string(), mesh, &error) || id < 1 ||
+        static_cast<std::size_t>(id) > counts.size()) {
+      std::fprintf(stderr, "model %d: %s\n", id,
+                   error.empty() ? "no segment count" : error.c_str());
       return 1;
     }
     std::vector<std::uint32_t> face_of_point;

@@ -88,12 +88,13 @@ TEST(BucketDijkstra, DistancesEqualBoostsBitForBitOnRealGraphs) {
     std::vector<float> reordered(xyz.size());
     for (std::size_t i = 0; i < n; ++i)
       std::copy_n(&xyz[3 * morton[i]], 3, &reordered[3 * i]);
-    for (const std::vector<float>* points : {&xyz, static_cast<const std::vector<float>*>(&reordered)}) {
+    for (const std::vector<float>* points :
+         {&xyz, static_cast<const std::vector<float>*>(&reordered)}) {
       const CsrGraph g = knnGraph(*points);
       BucketDijkstra search(g);
       std::vector<float> dist(n, kInf);
-      for (std::uint32_t source : {0u, static_cast<std::uint32_t>(n / 3),
-                                   static_cast<std::uint32_t>(n - 1)}) {
+      for (std::uint32_t source :
+           {0u, static_cast<std::uint32_t>(n / 3), static_cast<std::uint32_t>(n - 1)}) {
         std::fill(dist.begin(), dist.end(), kInf);
         std::vector<std::uint32_t> touched;
         search.run(source, dist.data(), nullptr, &touched);
@@ -112,8 +113,8 @@ TEST(BucketDijkstra, DistancesEqualBoostsBitForBitOnRealGraphs) {
 
 TEST(BucketDijkstra, HandlesComponentsZeroLengthsAndAnOutlierEdge) {
   // 0-1-2 with a zero-length edge, 3-4 far away, and 5-6 joined by a very long edge.
-  const CsrGraph g = test::graphFromEdges(
-      7, {{0, 1, 0.f}, {1, 2, 1.f}, {3, 4, 2.f}, {5, 6, 1e7f}, {2, 5, 0.5f}});
+  const CsrGraph g =
+      test::graphFromEdges(7, {{0, 1, 0.f}, {1, 2, 1.f}, {3, 4, 2.f}, {5, 6, 1e7f}, {2, 5, 0.5f}});
   BucketDijkstra search(g);
   for (std::uint32_t s = 0; s < 7; ++s) {
     std::vector<float> dist(7, kInf);
@@ -214,8 +215,8 @@ TEST(CoarseCentrality, IsCloseToExactAndIndependentOfThreads) {
       d2 += (ra[v] - rb[v]) * (ra[v] - rb[v]);
     const double spearman = 1 - 6 * d2 / (double(n) * (double(n) * n - 1));
     std::cout << "[ measured ] " << n << " points, " << reps
-              << " representatives: mean relative error of f " << error << ", Spearman "
-              << spearman << std::endl;
+              << " representatives: mean relative error of f " << error << ", Spearman " << spearman
+              << std::endl;
     EXPECT_LT(error, 0.03);
     EXPECT_GT(spearman, 0.98);
   }

@@ -56,8 +56,8 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   for (float w : g.lengths)
     sum += w;
   const double mean_edge = g.lengths.empty() ? 1.0 : sum / static_cast<double>(g.lengths.size());
-  double radius =
-      mean_edge * std::sqrt(static_cast<double>(n) / (9.2 * static_cast<double>(num_representatives)));
+  double radius = mean_edge * std::sqrt(static_cast<double>(n) /
+                                        (9.2 * static_cast<double>(num_representatives)));
   std::vector<float> dist(n, kInf), bound(n);
   BucketDijkstra search(g);
   std::vector<std::uint32_t> visit(n), reps;
@@ -169,8 +169,7 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
         fine_dist[v] = kInf;
     }
   }
-  const float scale =
-      coarse_sum > 0.0 ? static_cast<float>(fine_sum / coarse_sum) : 1.0f;
+  const float scale = coarse_sum > 0.0 ? static_cast<float>(fine_sum / coarse_sum) : 1.0f;
 
   // 5. Back to every vertex, linearly between its two nearest representatives.
   Centrality out;

@@ -11,8 +11,9 @@ namespace pcl_ncut_seg {
  * coarse graph of about num_representatives vertices, then carried back to every point.
  *
  * 1. Representatives: a greedy cover of the graph by geodesic balls of one radius, visiting the
- *    vertices in ascending tie_rank (see computeCentrality(); default the index); the radius is set so that about num_representatives balls
- *    cover the graph. Representatives are at least one radius apart.
+ *    vertices in ascending tie_rank (see computeCentrality(); default the index); the radius is set
+ * so that about num_representatives balls cover the graph. Representatives are at least one radius
+ * apart.
  * 2. Every vertex finds its two nearest representatives r1, r2 at graph distances d1 <= d2
  *    (a two-label multi-source search).
  * 3. The coarse graph joins the representatives of neighbouring cells (r1 differs across a kNN

@@ -322,7 +322,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
     // Queries in vertex (Morton) order visit the search tree coherently.
-#pragma omp parallel num_threads(num_threads_ > 0 ? static_cast<int>(num_threads_) : omp_get_max_threads())
+    const int threads = num_threads_ > 0 ? static_cast<int>(num_threads_) : omp_get_max_threads();
+#pragma omp parallel num_threads(threads)
     {
       pcl::Indices nn;
       std::vector<float> sqr;
