@@ -83,9 +83,9 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   for (std::uint32_t u = 0; u < n; ++u)
     for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
       const std::uint32_t v = g.targets[e];
-      const std::uint32_t a = near.first[u], b = near.first[v];
+      const std::uint32_t a = near.at[u].first, b = near.at[v].first;
       if (a < b)
-        edges.emplace_back(a, b, near.first_dist[u] + g.lengths[e] + near.first_dist[v]);
+        edges.emplace_back(a, b, near.at[u].first_dist + g.lengths[e] + near.at[v].first_dist);
     }
   std::sort(edges.begin(), edges.end());
   const std::size_t c = reps.size();
@@ -175,13 +175,13 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   Centrality out;
   out.f.resize(n);
   for (std::uint32_t p = 0; p < n; ++p) {
-    const float d1 = near.first_dist[p], d2 = near.second_dist[p];
-    const float f1 = scale * cc.f[near.first[p]];
+    const float d1 = near.at[p].first_dist, d2 = near.at[p].second_dist;
+    const float f1 = scale * cc.f[near.at[p].first];
     float f;
-    if (near.second[p] == kNoSource)
+    if (near.at[p].second == kNoSource)
       f = d1; // the component's only representative is its only sample: f = g(p, r1)
     else if (d1 + d2 > 0.0f)
-      f = (d2 * f1 + d1 * scale * cc.f[near.second[p]]) / (d1 + d2);
+      f = (d2 * f1 + d1 * scale * cc.f[near.at[p].second]) / (d1 + d2);
     else
       f = f1;
     out.f[p] = f;

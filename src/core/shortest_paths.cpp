@@ -103,10 +103,7 @@ CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& o
 NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::uint32_t>& sources) {
   const std::size_t n = graph.numVertices();
   NearestSources out;
-  out.first.assign(n, kNotQueued);
-  out.second.assign(n, kNotQueued);
-  out.first_dist.assign(n, kInf);
-  out.second_dist.assign(n, kInf);
+  out.at.assign(n, NearestSources::Labels{kNotQueued, kNotQueued, kInf, kInf});
   // Dial's buckets as in BucketDijkstra, label-correcting: a vertex is queued in the bucket of
   // its smallest changed label and passes both labels on when scanned.
   double sum = 0.0;
@@ -140,26 +137,26 @@ NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::u
   };
   // Offer the label (source s, distance d) to v; true if v's labels changed.
   auto offer = [&](std::uint32_t v, std::uint32_t s, float d) {
-    if (s == out.first[v]) {
-      if (!(d < out.first_dist[v]))
+    if (s == out.at[v].first) {
+      if (!(d < out.at[v].first_dist))
         return false;
-      out.first_dist[v] = d;
-    } else if (s == out.second[v]) {
-      if (!(d < out.second_dist[v]))
+      out.at[v].first_dist = d;
+    } else if (s == out.at[v].second) {
+      if (!(d < out.at[v].second_dist))
         return false;
-      out.second_dist[v] = d;
-      if (out.second_dist[v] < out.first_dist[v]) {
-        std::swap(out.first[v], out.second[v]);
-        std::swap(out.first_dist[v], out.second_dist[v]);
+      out.at[v].second_dist = d;
+      if (out.at[v].second_dist < out.at[v].first_dist) {
+        std::swap(out.at[v].first, out.at[v].second);
+        std::swap(out.at[v].first_dist, out.at[v].second_dist);
       }
-    } else if (d < out.first_dist[v]) {
-      out.second[v] = out.first[v];
-      out.second_dist[v] = out.first_dist[v];
-      out.first[v] = s;
-      out.first_dist[v] = d;
-    } else if (d < out.second_dist[v]) {
-      out.second[v] = s;
-      out.second_dist[v] = d;
+    } else if (d < out.at[v].first_dist) {
+      out.at[v].second = out.at[v].first;
+      out.at[v].second_dist = out.at[v].first_dist;
+      out.at[v].first = s;
+      out.at[v].first_dist = d;
+    } else if (d < out.at[v].second_dist) {
+      out.at[v].second = s;
+      out.at[v].second_dist = d;
     } else {
       return false;
     }
@@ -176,8 +173,8 @@ NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::u
       if (queued[v] != current)
         continue;
       queued[v] = kNotQueued;
-      const std::uint32_t s1 = out.first[v], s2 = out.second[v];
-      const float d1 = out.first_dist[v], d2 = out.second_dist[v];
+      const std::uint32_t s1 = out.at[v].first, s2 = out.at[v].second;
+      const float d1 = out.at[v].first_dist, d2 = out.at[v].second_dist;
       for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
         const std::uint32_t t = graph.targets[e];
         const float w = graph.lengths[e];

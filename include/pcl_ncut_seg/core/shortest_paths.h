@@ -53,8 +53,11 @@ namespace pcl_ncut_seg {
  * diagram). A vertex with fewer than two reachable sources gets kNone and +infinity for the
  * missing ones. Equal distances are resolved in a fixed order, so the result is reproducible. */
 struct NearestSources {
-  std::vector<std::uint32_t> first, second; ///< index into the source list
-  std::vector<float> first_dist, second_dist;
+  struct Labels {
+    std::uint32_t first, second; ///< index into the source list
+    float first_dist, second_dist;
+  };
+  std::vector<Labels> at; ///< per vertex (one cache line holds a vertex's labels)
 };
 
 /** \brief Multi-source search from sources (vertex ids) keeping two labels per vertex. */
