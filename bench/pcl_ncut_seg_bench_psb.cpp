@@ -73,18 +73,23 @@ std::vector<int> segmentLabels(const Cloud::Ptr& cloud, int segments_wanted,
 
 int main(int argc, char** argv) {
   std::size_t samples = 0;
+  bool stability = false;
   fs::path dir = fs::path(PCL_NCUT_SEG_BENCH_DATA) / "psb-dev";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--samples" && i + 1 < argc)
       samples = std::strtoull(argv[++i], nullptr, 10);
+    else if (a == "--stability")
+      stability = true;
     else if (a == "--data" && i + 1 < argc)
       dir = fs::path(argv[++i]) / "psb-dev";
     else {
-      std::printf("Usage: %s [--samples N] [--data DIR]\n"
+      std::printf("Usage: %s [--samples N] [--stability] [--data DIR]\n"
                   "Rand index between the Exact and the default (Fast) centrality's segmentations\n"
                   "on the PSB dev split, and 1 - Rand index of both against the humans.\n"
                   "  --samples N  N surface samples per model instead of the face centroids\n"
+                  "  --stability  also the Rand index between Exact on the points and Exact on\n"
+                  "               them in reverse order (another first sample): the baseline\n"
                   "  --data DIR   shared data directory with psb-dev/\n",
                   argv[0]);
       return a == "-h" || a == "--help" ? 0 : 1;
@@ -106,9 +111,9 @@ int main(int argc, char** argv) {
     for (int v; in >> v;)
       counts.push_back(v);
   }
-  std::printf("%5s %7s %3s %9s %9s %9s %8s %8s\n", "model", "points", "k", "RI(F,E)", "1-RI E",
-              "1-RI F", "E s", "F s");
-  double sum_agree = 0, sum_exact = 0, sum_fast = 0, time_exact = 0, time_fast = 0;
+  std::printf("%5s %7s %3s %9s %9s %9s %8s %8s%s\n", "model", "points", "k", "RI(F,E)", "1-RI E",
+              "1-RI F", "E s", "F s", stability ? "   RI(E,E')" : "");
+  double sum_agree = 0, sum_exact = 0, sum_fast = 0, time_exact = 0, time_fast = 0, sum_self = 0;
   int models = 0;
   for (const int id : ids) {
     const std::string name = std::to_string(id);
@@ -163,8 +168,25 @@ int main(int argc, char** argv) {
     err_exact /= static_cast<double>(seg_files.size());
     err_fast /= static_cast<double>(seg_files.size());
     const double agree = randIndex(fast, exact);
-    std::printf("%5d %7zu %3d %9.4f %9.4f %9.4f %8.3f %8.3f\n", id, cloud->size(), k, agree,
+    double self = 1.0;
+    if (stability) {
+      // The same points in reverse order: only the ties (the first sample) change.
+      Cloud::Ptr reversed(new Cloud);
+      reversed->points.assign(cloud->points.rbegin(), cloud->points.rend());
+      reversed->width = static_cast<std::uint32_t>(reversed->size());
+      reversed->height = 1;
+      double tr = 0;
+      const std::vector<int> back =
+          segmentLabels(reversed, k, pcl_ncut_seg::CentralityMode::Exact, &tr);
+      std::vector<int> again(back.rbegin(), back.rend());
+      self = randIndex(again, exact);
+      sum_self += self;
+    }
+    std::printf("%5d %7zu %3d %9.4f %9.4f %9.4f %8.3f %8.3f", id, cloud->size(), k, agree,
                 err_exact, err_fast, te, tf);
+    if (stability)
+      std::printf(" %9.4f", self);
+    std::printf("\n");
     std::fflush(stdout);
     sum_agree += agree, sum_exact += err_exact, sum_fast += err_fast;
     time_exact += te, time_fast += tf;
@@ -174,5 +196,8 @@ int main(int argc, char** argv) {
               " time Exact %.1f s, Fast %.1f s\n",
               models, sum_agree / models, sum_exact / models, sum_fast / models, time_exact,
               time_fast);
+  if (stability)
+    std::printf("mean Rand index between Exact and Exact on the reversed points: %.4f\n",
+                sum_self / models);
   return 0;
 }
