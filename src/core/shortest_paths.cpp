@@ -33,42 +33,58 @@ BucketDijkstra::BucketDijkstra(const CsrGraph& graph)
 
 void BucketDijkstra::run(std::uint32_t source, float* dist, const float* bound,
                          std::vector<std::uint32_t>* touched) {
+  // One loop per combination, so that the full searches of the centrality run the leanest.
+  if (bound)
+    touched ? runImpl<true, true>(source, dist, bound, touched)
+            : runImpl<true, false>(source, dist, bound, touched);
+  else
+    touched ? runImpl<false, true>(source, dist, bound, touched)
+            : runImpl<false, false>(source, dist, bound, touched);
+}
+
+template <bool kBounded, bool kRecord>
+void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bound,
+                             std::vector<std::uint32_t>* touched) {
   // Absolute bucket numbers fit 32 bits for any graph whose diameter is < 2^32 widths.
-  auto bucketOf = [this](float d) {
-    return static_cast<std::uint32_t>(static_cast<double>(d) * inv_width_);
+  const double inv_width = inv_width_;
+  const std::size_t mask = mask_;
+  auto bucketOf = [inv_width](float d) {
+    return static_cast<std::uint32_t>(static_cast<double>(d) * inv_width);
   };
   const std::uint32_t* offsets = graph_.offsets.data();
   const std::uint32_t* targets = graph_.targets.data();
   const float* lengths = graph_.lengths.data();
+  std::uint32_t* queued = queued_.data();
   dist[source] = 0.0f;
-  if (touched)
+  if (kRecord)
     touched->push_back(source);
   buckets_[0].push_back(source);
-  queued_[source] = 0;
+  queued[source] = 0;
   std::size_t pending = 1;
   for (std::uint32_t current = 0; pending > 0; ++current) {
-    std::vector<std::uint32_t>& bucket = buckets_[current & mask_];
+    std::vector<std::uint32_t>& bucket = buckets_[current & mask];
     // Vertices improved within this bucket are appended to it and scanned again.
     for (std::size_t i = 0; i < bucket.size(); ++i) {
       const std::uint32_t v = bucket[i];
       --pending;
-      if (queued_[v] != current)
+      if (queued[v] != current)
         continue; // stale: v was re-queued in an earlier bucket, or is queued later in this one
-      queued_[v] = kNotQueued;
+      queued[v] = kNotQueued;
       const float dv = dist[v];
-      if (bound && dv >= bound[v])
+      if (kBounded && dv >= bound[v])
         continue;
-      for (std::uint32_t e = offsets[v]; e < offsets[v + 1]; ++e) {
+      const std::uint32_t end = offsets[v + 1];
+      for (std::uint32_t e = offsets[v]; e < end; ++e) {
         const std::uint32_t t = targets[e];
         const float nd = dv + lengths[e];
         if (nd < dist[t]) {
-          if (touched && dist[t] == kInf)
+          if (kRecord && dist[t] == kInf)
             touched->push_back(t);
           dist[t] = nd;
           const std::uint32_t b = bucketOf(nd);
-          if (queued_[t] != b) {
-            queued_[t] = b;
-            buckets_[b & mask_].push_back(t);
+          if (queued[t] != b) {
+            queued[t] = b;
+            buckets_[b & mask].push_back(t);
             ++pending;
           }
         }

@@ -34,6 +34,10 @@ public:
            std::vector<std::uint32_t>* touched = nullptr);
 
 private:
+  template <bool kBounded, bool kRecord>
+  void runImpl(std::uint32_t source, float* dist, const float* bound,
+               std::vector<std::uint32_t>* touched);
+
   const CsrGraph& graph_;
   double inv_width_ = 1.0;
   std::size_t mask_ = 0;
