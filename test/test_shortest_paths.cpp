@@ -23,6 +23,7 @@
 #include <iostream>
 #include <limits>
 #include <numeric>
+#include <thread>
 #include <vector>
 
 using namespace pcl_ncut_seg;
@@ -258,4 +259,21 @@ TEST(CentralityMode, SetterChecksAndBothModesSegment) {
   ASSERT_EQ(fast.size(), fast_two.size());
   for (std::size_t s = 0; s < fast.size(); ++s)
     EXPECT_EQ(fast[s].indices, fast_two[s].indices);
+}
+
+TEST(CentralityProgress, ReportsFromTheCallingThreadUpToOne) {
+  const CsrGraph g = knnGraph(test::randomPoints(2000, 6));
+  const std::thread::id caller = std::this_thread::get_id();
+  std::vector<double> seen;
+  bool same_thread = true;
+  const Centrality c = computeCentrality(g, 0, 2, nullptr, [&](double fraction) {
+    same_thread = same_thread && std::this_thread::get_id() == caller;
+    seen.push_back(fraction);
+  });
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(same_thread);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_GT(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  EXPECT_EQ(c.f, computeCentrality(g, 0, 1).f);
 }

@@ -68,7 +68,7 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
   // the cache (the PCL front end numbers points along a Morton curve). Here components must
   // be contiguous ranges of positions: component c occupies [begin[c], begin[c + 1]) (both
   // number components in order of their smallest vertex). The graph is copied only when they
-  // are not. Distances do not depend on the numbering; ties below go to the smallest vertex.
+  // are not. Distances do not depend on the numbering; ties below go to the smallest rank.
   std::vector<std::uint32_t> begin(out.num_components + 1, 0);
   for (std::uint32_t v = 0; v < n; ++v)
     ++begin[out.component[v] + 1];

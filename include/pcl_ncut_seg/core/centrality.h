@@ -27,8 +27,9 @@ using ProgressFn = std::function<void(double)>;
  * Each connected component is treated as its own surface: it gets ceil(sqrt(n_c)) samples (or
  * the given number, capped at n_c), chosen by farthest-point sampling on graph distance, and f is
  * averaged over the samples of the vertex's component only. The first sample of a component is
- * the vertex farthest from its smallest-index vertex (ties: smallest index), so the choice is
- * deterministic. Sampling uses bounded Dijkstra searches; the full searches for the sums run in
+ * the vertex farthest from its smallest-index vertex (ties: smallest index; see tie_rank), so
+ * the choice is deterministic. Searches use Dial's bucket queue (BucketDijkstra, the same
+ * distances as geodesicDistances()); sampling uses bounded searches; the full searches run in
  * parallel and are summed in fixed point, so f is bit-identical for any number of threads.
  *
  * \param[in] graph        the kNN graph

@@ -19,9 +19,20 @@
 
 #ifdef _OPENMP
 #include <omp.h>
-#else
-inline int omp_get_max_threads() { return 1; }
 #endif
+
+namespace pcl {
+namespace ncut_detail {
+/// Threads for "all cores" (1 without OpenMP).
+inline int maxThreads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+} // namespace ncut_detail
+} // namespace pcl
 
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
@@ -322,7 +333,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
     // Queries in vertex (Morton) order visit the search tree coherently.
-    const int threads = num_threads_ > 0 ? static_cast<int>(num_threads_) : omp_get_max_threads();
+    const int threads =
+        num_threads_ > 0 ? static_cast<int>(num_threads_) : ncut_detail::maxThreads();
 #pragma omp parallel num_threads(threads)
     {
       pcl::Indices nn;
