@@ -1,5 +1,6 @@
 // Sec. 4.1: farthest-point samples on graph distance and the mean geodesic distance, eq. (1).
 #include <pcl_ncut_seg/core/centrality.h>
+#include <pcl_ncut_seg/core/shortest_paths.h>
 
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/dijkstra_shortest_paths_no_color_map.hpp>
@@ -15,11 +16,11 @@
 
 namespace pcl_ncut_seg {
 namespace {
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
 using BoostGraph =
     boost::compressed_sparse_row_graph<boost::directedS, boost::no_property, boost::no_property,
                                        boost::no_property, std::uint32_t, std::uint32_t>;
-using Edge = boost::graph_traits<BoostGraph>::edge_descriptor;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 BoostGraph toBoost(const CsrGraph& graph) {
@@ -32,27 +33,6 @@ BoostGraph toBoost(const CsrGraph& graph) {
   return BoostGraph(boost::edges_are_sorted, edges.begin(), edges.end(),
                     static_cast<std::uint32_t>(graph.numVertices()));
 }
-
-/// Edge lengths, as +inf out of a vertex that the current search cannot improve (dist >= h):
-/// the bounded search of farthest-point sampling stops there (Sec. 4.1 step 5c).
-struct PrunedLength {
-  using key_type = Edge;
-  using value_type = float;
-  using reference = float;
-  using category = boost::readable_property_map_tag;
-  const float* length;
-  const float* dist;
-  const float* h;
-};
-inline float get(const PrunedLength& m, const Edge& e) {
-  return m.dist[e.src] >= m.h[e.src] ? kInf : m.length[e.idx];
-}
-
-struct RecordDiscovered : boost::default_dijkstra_visitor {
-  std::vector<std::uint32_t>* touched;
-  explicit RecordDiscovered(std::vector<std::uint32_t>* t) : touched(t) {}
-  void discover_vertex(std::uint32_t v, const BoostGraph&) const { touched->push_back(v); }
-};
 
 /// Dijkstra from `source`; dist must be +inf on the source's component and is left filled.
 template <class WeightMap, class Visitor>
@@ -77,46 +57,82 @@ std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source
 }
 
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
-                             const ProgressFn& progress) {
+                             const std::uint32_t* tie_rank, const ProgressFn& progress) {
   const std::size_t n = graph.numVertices();
   Centrality out;
   out.f.assign(n, 0.0f);
   if (n == 0)
     return out;
   out.num_components = connectedComponents(graph, out.component);
-  std::vector<std::vector<std::uint32_t>> members(out.num_components);
+  // Searches read the graph in vertex order, so the caller's order decides how well they use
+  // the cache (the PCL front end numbers points along a Morton curve). Here components must
+  // be contiguous ranges of positions: component c occupies [begin[c], begin[c + 1]) (both
+  // number components in order of their smallest vertex). The graph is copied only when they
+  // are not. Distances do not depend on the numbering; ties below go to the smallest rank.
+  std::vector<std::uint32_t> begin(out.num_components + 1, 0);
   for (std::uint32_t v = 0; v < n; ++v)
-    members[out.component[v]].push_back(v);
+    ++begin[out.component[v] + 1];
+  for (std::size_t c = 0; c < out.num_components; ++c)
+    begin[c + 1] += begin[c];
+  std::vector<std::uint32_t> order(n), pos(n);
+  {
+    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
+    for (std::uint32_t v = 0; v < n; ++v) {
+      pos[v] = fill[out.component[v]]++;
+      order[pos[v]] = v;
+    }
+  }
+  bool contiguous = true;
+  for (std::uint32_t v = 0; v < n && contiguous; ++v)
+    contiguous = pos[v] == v;
+  CsrGraph permuted;
+  if (!contiguous)
+    permuted = permuteGraph(graph, order);
+  const CsrGraph& g = contiguous ? graph : permuted;
 
-  const BoostGraph g = toBoost(graph);
-  const auto length =
-      boost::make_iterator_property_map(graph.lengths.data(), boost::get(boost::edge_index, g));
   std::vector<float> h(n, kInf), dist(n, kInf);
   std::vector<std::uint32_t> touched;
+  BucketDijkstra search(g);
   // Per component: its samples and a fixed-point quantum that bounds every distance in it.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> tasks; // (sample, component)
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tasks; // (sample position, component)
   std::vector<double> quantum(out.num_components, 1.0);
   std::vector<std::size_t> count(out.num_components, 0);
 
+  // Ties go to the smallest rank (the caller's, or the vertex index).
+  auto rank = [tie_rank](std::uint32_t v) { return tie_rank ? tie_rank[v] : v; };
+  std::vector<std::uint32_t> smallest(out.num_components, kNone); // per component
+  for (std::uint32_t v = 0; v < n; ++v) {
+    std::uint32_t& m = smallest[out.component[v]];
+    if (m == kNone || rank(v) < rank(m))
+      m = v;
+  }
   for (std::uint32_t c = 0; c < out.num_components; ++c) {
-    const auto& comp = members[c];
-    const std::size_t want =
-        std::min(comp.size(), num_samples > 0 ? num_samples
-                                              : static_cast<std::size_t>(std::ceil(
-                                                    std::sqrt(static_cast<double>(comp.size())))));
-    // First sample: farthest from the component's smallest vertex (a deterministic choice for
+    const std::uint32_t first_vertex = smallest[c];
+    const std::size_t size = begin[c + 1] - begin[c];
+    const std::size_t want = std::min(
+        size, num_samples > 0
+                  ? num_samples
+                  : static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(size)))));
+    // The largest value of x over the component's positions, ties to the smallest rank.
+    auto argmax = [&](const std::vector<float>& x, float& best) {
+      std::uint32_t arg = kNone;
+      for (std::uint32_t p = begin[c]; p < begin[c + 1]; ++p)
+        if (x[p] > best || (x[p] == best && arg != kNone && rank(order[p]) < rank(arg))) {
+          best = x[p];
+          arg = order[p];
+        }
+      return arg;
+    };
+    // First sample: farthest from the component's smallest-rank vertex (a deterministic choice for
     // the arbitrary tie of step 4 when h is infinite everywhere).
     touched.clear();
-    dijkstra(g, comp.front(), dist.data(), length, RecordDiscovered(&touched));
-    std::uint32_t first = comp.front();
+    search.run(pos[first_vertex], dist.data(), nullptr, &touched);
     float ecc = 0.0f;
-    for (std::uint32_t v : comp)
-      if (dist[v] > ecc) {
-        ecc = dist[v];
-        first = v;
-      }
-    for (std::uint32_t v : touched)
-      dist[v] = kInf;
+    std::uint32_t first = argmax(dist, ecc);
+    if (first == kNone) // a single vertex, or every distance 0
+      first = first_vertex;
+    for (std::uint32_t p : touched)
+      dist[p] = kInf;
     // Any geodesic distance in the component is at most 2 * ecc (triangle inequality).
     if (ecc > 0.0f)
       quantum[c] = 2.0 * ecc / static_cast<double>(std::int64_t(1) << 40);
@@ -125,22 +141,17 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
     for (std::size_t i = 0; i < want; ++i) {
       if (i > 0) { // step 4: the vertex with the largest h, ties to the smallest index
         float best = -1.0f;
-        for (std::uint32_t v : comp)
-          if (h[v] > best) {
-            best = h[v];
-            s = v;
-          }
+        s = argmax(h, best);
       }
-      tasks.emplace_back(s, c);
-      // Steps 5c: h <- min(h, g(s, .)), searching only where h can still drop.
+      tasks.emplace_back(pos[s], c);
+      // Step 5c: h <- min(h, g(s, .)), searching only where h can still drop.
       touched.clear();
-      dijkstra(g, s, dist.data(), PrunedLength{graph.lengths.data(), dist.data(), h.data()},
-               RecordDiscovered(&touched));
-      for (std::uint32_t v : touched) {
-        h[v] = std::min(h[v], dist[v]);
-        dist[v] = kInf;
+      search.run(pos[s], dist.data(), h.data(), &touched);
+      for (std::uint32_t p : touched) {
+        h[p] = std::min(h[p], dist[p]);
+        dist[p] = kInf;
       }
-      h[s] = 0.0f;
+      h[pos[s]] = 0.0f;
     }
     count[c] = want;
   }
@@ -169,19 +180,18 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
     std::vector<std::int64_t>& acc = partial[t];
     acc.assign(n, 0);
     std::vector<float> d(n, kInf);
+    BucketDijkstra full(g);
 #pragma omp for schedule(dynamic, 1)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(tasks.size()); ++i) {
       const auto [sample, c] = tasks[i];
-      const auto& comp = members[c];
-      dijkstra(g, sample, d.data(), length, boost::default_dijkstra_visitor());
+      full.run(sample, d.data());
       const double inv = 1.0 / quantum[c];
-      for (std::uint32_t v : comp) {
-        acc[v] += std::llround(static_cast<double>(d[v]) * inv);
-        d[v] = kInf;
+      for (std::uint32_t p = begin[c]; p < begin[c + 1]; ++p) {
+        acc[p] += static_cast<std::int64_t>(static_cast<double>(d[p]) * inv + 0.5); // < 2^41
+        d[p] = kInf;
       }
-      // Only the calling thread (the team's master) reports, so the callback needs no lock.
-      const std::size_t finished = done.fetch_add(1) + 1;
-      if (progress && t == 0)
+      const std::size_t finished = ++done;
+      if (t == 0 && progress) // the calling thread reports
         progress(static_cast<double>(finished) / static_cast<double>(tasks.size()));
     }
   }
@@ -190,14 +200,16 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
   for (std::uint32_t v = 0; v < n; ++v) {
     std::int64_t sum = 0;
     for (const auto& acc : partial)
-      sum += acc[v];
+      sum += acc[pos[v]];
     const std::uint32_t c = out.component[v];
     out.f[v] =
         static_cast<float>(static_cast<double>(sum) * quantum[c] / static_cast<double>(count[c]));
   }
+  if (progress)
+    progress(1.0);
   out.samples.reserve(tasks.size());
   for (const auto& t : tasks)
-    out.samples.push_back(t.first);
+    out.samples.push_back(order[t.first]);
   return out;
 }
 

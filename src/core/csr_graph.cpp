@@ -32,44 +32,50 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
     return q < n && q != p &&
            (radius[q] == 0.0f || distance(xyz, p, q) <= kFarEdgeRatio * radius[q]);
   };
-  // Union of both directions: count each p -> q and q -> p, then sort and deduplicate rows.
+  // Union of both directions. A used p -> q puts q in p's row, and p in q's row unless q -> p
+  // is also a used kNN entry (then q's own entry adds it): rows hold no duplicate without a
+  // sort-and-unique pass over 2nk entries, so memory stays at the size of the result.
+  auto listsUsed = [&](std::uint32_t q, std::size_t p) {
+    for (std::size_t j = 0; j < k; ++j)
+      if (knn[q * k + j] == p)
+        return used(q, static_cast<std::uint32_t>(p));
+    return false;
+  };
+  auto isDuplicateInRow = [&](std::size_t p, std::size_t j) {
+    for (std::size_t i = 0; i < j; ++i)
+      if (knn[p * k + i] == knn[p * k + j])
+        return true;
+    return false;
+  };
   CsrGraph g;
   g.offsets.assign(n + 1, 0);
   for (std::size_t p = 0; p < n; ++p)
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
-      if (!used(p, q))
+      if (!used(p, q) || isDuplicateInRow(p, j))
         continue;
       ++g.offsets[p + 1];
-      ++g.offsets[q + 1];
+      if (!listsUsed(q, p))
+        ++g.offsets[q + 1];
     }
   for (std::size_t v = 0; v < n; ++v)
     g.offsets[v + 1] += g.offsets[v];
-  std::vector<std::uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
-  std::vector<std::uint32_t> targets(g.offsets[n]);
-  for (std::size_t p = 0; p < n; ++p)
-    for (std::size_t j = 0; j < k; ++j) {
-      const std::uint32_t q = knn[p * k + j];
-      if (!used(p, q))
-        continue;
-      targets[fill[p]++] = q;
-      targets[fill[q]++] = static_cast<std::uint32_t>(p);
-    }
-  // Compact: sorted unique neighbours per row.
-  std::vector<std::uint32_t> offsets(n + 1, 0);
-  std::size_t out = 0;
-  for (std::size_t v = 0; v < n; ++v) {
-    auto b = targets.begin() + g.offsets[v], e = targets.begin() + g.offsets[v + 1];
-    std::sort(b, e);
-    e = std::unique(b, e);
-    for (auto it = b; it != e; ++it)
-      targets[out++] = *it;
-    offsets[v + 1] = static_cast<std::uint32_t>(out);
+  g.targets.resize(g.offsets[n]);
+  {
+    std::vector<std::uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t j = 0; j < k; ++j) {
+        const std::uint32_t q = knn[p * k + j];
+        if (!used(p, q) || isDuplicateInRow(p, j))
+          continue;
+        g.targets[fill[p]++] = q;
+        if (!listsUsed(q, p))
+          g.targets[fill[q]++] = static_cast<std::uint32_t>(p);
+      }
   }
-  targets.resize(out);
-  g.offsets = std::move(offsets);
-  g.targets = std::move(targets);
-  g.lengths.resize(out);
+  for (std::size_t v = 0; v < n; ++v)
+    std::sort(g.targets.begin() + g.offsets[v], g.targets.begin() + g.offsets[v + 1]);
+  g.lengths.resize(g.targets.size());
   for (std::size_t v = 0; v < n; ++v)
     for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
       g.lengths[e] = distance(xyz, v, g.targets[e]);

@@ -32,8 +32,13 @@ Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times
     centrality_progress = [&params](double fraction) { params.progress("Cen", fraction); };
   Stopwatch clock;
   report("Cen", 0.0);
-  a.centrality =
-      computeCentrality(a.graph, params.num_samples, params.num_threads, centrality_progress);
+  const std::uint32_t* rank = params.tie_rank.empty() ? nullptr : params.tie_rank.data();
+  a.centrality = params.centrality_mode == CentralityMode::Exact
+                     ? computeCentrality(a.graph, params.num_samples, params.num_threads, rank,
+                                         centrality_progress)
+                     : computeCoarseCentrality(a.graph, params.num_representatives,
+                                               params.num_samples, params.num_threads, rank,
+                                               centrality_progress);
   report("Cen", 1.0);
   times.centrality = clock.lap();
   report("Snod", 0.0);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <queue>
 
 namespace pcl_ncut_seg {
 
@@ -53,11 +54,17 @@ struct Work {
     area.push_back(0.0);
     fmin.push_back(std::numeric_limits<float>::infinity());
     fmax.push_back(-std::numeric_limits<float>::infinity());
+    dirty.push_back(1);
     if (par != kNone)
       children[par].push_back(s);
     return s;
   }
+  std::vector<std::uint8_t> dirty; ///< per supernode, points gained or lost since last checked
+
   void addPoint(std::uint32_t s, std::uint32_t p, const std::vector<float>& f, double a) {
+    if (label[p] != kNone)
+      dirty[label[p]] = 1;
+    dirty[s] = 1;
     label[p] = s;
     points[s].push_back(p);
     area[s] += a;
@@ -190,11 +197,13 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   // Steps 1 and 2 repeat until nothing merges: a merge moves children and grows supernodes,
   // which can make another supernode eligible.
   std::vector<std::uint32_t> by_f;
+  std::vector<std::uint32_t> slot(n, kNone); // merge-up: position of a point in by_f
+  std::vector<std::uint32_t> kid_index;      // merge-up: position of a supernode in kids
   // Steps 1-3 repeat until nothing changes (a few rounds at most): the kept region of a
   // split supernode is re-tested too.
   for (int round = 0; round < 8; ++round) {
     bool changed = false;
-    for (bool merged = changed = true; merged;) {
+    for (bool merged = true; merged;) {
       merged = false;
       for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
         if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
@@ -205,31 +214,82 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
         std::sort(by_f.begin(), by_f.end(), [&](std::uint32_t a, std::uint32_t b) {
           return f[a] > f[b] || (f[a] == f[b] && a < b);
         });
-        std::vector<std::uint32_t> pending = by_f;
         w.points[s].clear();
         w.area[s] = 0.0;
-        for (bool changed = true; changed && !pending.empty();) {
-          changed = false;
-          std::vector<std::uint32_t> rest;
-          for (std::uint32_t p : pending) {
-            std::uint32_t best = kNone, best_count = 0;
-            for (std::uint32_t kid : kids) {
-              std::uint32_t c = 0;
-              for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-                c += w.label[graph.targets[e]] == kid;
-              if (c > best_count) {
-                best = kid;
-                best_count = c;
-              }
-            }
-            if (best == kNone) {
-              rest.push_back(p);
-            } else {
-              w.addPoint(best, p, f, point_area[p]);
-              changed = true;
+        // Passes over the points in by_f order, each point joining the child most of its
+        // neighbours belong to, until a pass changes nothing. Simulated by events: a point is
+        // examined only at its turn in the first pass where it touches a child, so the cost is
+        // linear in the supernode's edges instead of edges times passes.
+        const auto count = static_cast<std::uint32_t>(by_f.size());
+        for (std::uint32_t i = 0; i < count; ++i)
+          slot[by_f[i]] = i;
+        std::vector<std::uint8_t> state(count, 0); // 0 pending, 1 scheduled, 2 assigned
+        std::priority_queue<std::uint64_t, std::vector<std::uint64_t>, std::greater<>> turns;
+        // kid_index[t]: t's position in kids, for one pass over the edges whatever the number
+        // of children.
+        if (kid_index.size() < w.alive.size())
+          kid_index.resize(w.alive.size(), kNone);
+        for (std::uint32_t j = 0; j < kids.size(); ++j)
+          kid_index[kids[j]] = j;
+        std::vector<std::uint32_t> kid_count(kids.size(), 0);
+        auto touchesChild = [&](std::uint32_t p) {
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+            const std::uint32_t t = w.label[graph.targets[e]];
+            if (t < kid_index.size() && kid_index[t] != kNone)
+              return true;
+          }
+          return false;
+        };
+        for (std::uint32_t i = 0; i < count; ++i)
+          if (touchesChild(by_f[i])) {
+            state[i] = 1;
+            turns.push(i); // pass 0
+          }
+        while (!turns.empty()) {
+          const std::uint64_t turn = turns.top();
+          turns.pop();
+          const std::uint64_t pass = turn >> 32;
+          const auto i = static_cast<std::uint32_t>(turn);
+          const std::uint32_t p = by_f[i];
+          // The child most neighbours belong to, ties to the first in kids.
+          std::uint32_t best = kNone, best_count = 0;
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+            const std::uint32_t t = w.label[graph.targets[e]];
+            if (t < kid_index.size() && kid_index[t] != kNone)
+              ++kid_count[kid_index[t]];
+          }
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+            const std::uint32_t t = w.label[graph.targets[e]];
+            if (t >= kid_index.size() || kid_index[t] == kNone)
+              continue;
+            const std::uint32_t j = kid_index[t], c = kid_count[j];
+            if (c > best_count || (c == best_count && j < kid_index[best])) {
+              best = t;
+              best_count = c;
             }
           }
-          pending.swap(rest);
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+            const std::uint32_t t = w.label[graph.targets[e]];
+            if (t < kid_index.size() && kid_index[t] != kNone)
+              kid_count[kid_index[t]] = 0;
+          }
+          w.addPoint(best, p, f, point_area[p]); // a child neighbour never leaves: best is set
+          state[i] = 2;
+          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+            const std::uint32_t q = graph.targets[e];
+            if (w.label[q] != s || state[slot[q]] != 0)
+              continue;
+            state[slot[q]] = 1;
+            turns.push(((slot[q] > i ? pass : pass + 1) << 32) | slot[q]);
+          }
+        }
+        for (std::uint32_t kid : kids)
+          kid_index[kid] = kNone;
+        std::vector<std::uint32_t> pending;
+        for (std::uint32_t i = 0; i < count; ++i) {
+          if (state[i] != 2)
+            pending.push_back(by_f[i]);
+          slot[by_f[i]] = kNone;
         }
         // Points that never touch a child: the largest child takes them; step 3 re-tests them.
         std::uint32_t largest = kids.front();
@@ -260,8 +320,10 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
     std::vector<std::uint32_t> region(n, kNone);
     const std::size_t before_regions = w.alive.size();
     for (std::uint32_t s = 0; s < before_regions; ++s) {
-      if (!w.alive[s] || w.points[s].empty())
+      // Only a supernode whose points changed can have split since it was last checked.
+      if (!w.alive[s] || w.points[s].empty() || !w.dirty[s])
         continue;
+      w.dirty[s] = 0;
       std::vector<std::vector<std::uint32_t>> regions;
       std::vector<std::uint32_t> stack;
       for (std::uint32_t seed : w.points[s]) {

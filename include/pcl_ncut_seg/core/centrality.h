@@ -22,22 +22,30 @@ struct Centrality {
   std::size_t num_components = 0;
 };
 
+/** \brief Progress callback: the fraction of the work done, in [0, 1]. */
+using ProgressFn = std::function<void(double)>;
+
 /** \brief Approximate centrality f(p) = 1/|U| sum_{q in U} g(p, q) (eq. 1).
  *
  * Each connected component is treated as its own surface: it gets ceil(sqrt(n_c)) samples (or
  * the given number, capped at n_c), chosen by farthest-point sampling on graph distance, and f is
  * averaged over the samples of the vertex's component only. The first sample of a component is
- * the vertex farthest from its smallest-index vertex (ties: smallest index), so the choice is
- * deterministic. Sampling uses bounded Dijkstra searches; the full searches for the sums run in
+ * the vertex farthest from its smallest-index vertex (ties: smallest index; see tie_rank), so
+ * the choice is deterministic. Searches use Dial's bucket queue (BucketDijkstra, the same
+ * distances as geodesicDistances()); sampling uses bounded searches; the full searches run in
  * parallel and are summed in fixed point, so f is bit-identical for any number of threads.
  *
  * \param[in] graph        the kNN graph
  * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))
  * \param[in] num_threads  threads for the full searches; 0 = all available
- * \param[in] progress     if set, called from the calling thread only with the fraction of the
- *                         full searches done (it must not throw)
+ * \param[in] tie_rank     if given, n distinct ranks: ties (the smallest vertex above) go to
+ *                         the smallest rank instead of the smallest index, so that the result
+ *                         does not depend on how the caller numbered the vertices
+ * \param[in] progress     if set, called from the calling thread with the fraction of the full
+ *                         searches done
  */
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
+                             const std::uint32_t* tie_rank = nullptr,
                              const ProgressFn& progress = {});
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).

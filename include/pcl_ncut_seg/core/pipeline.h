@@ -7,6 +7,7 @@
 #pragma once
 
 #include <pcl_ncut_seg/core/centrality.h>
+#include <pcl_ncut_seg/core/coarse_centrality.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/refinement.h>
@@ -25,7 +26,15 @@ struct PhaseTimes {
   double total() const { return knn + centrality + supernodes + refinement + hierarchy + points; }
 };
 
+/** \brief How the centrality of Sec. 4.1 is computed. */
+enum class CentralityMode {
+  Exact, ///< as the paper: ceil(sqrt(n)) samples, searches over the whole kNN graph
+  Fast   ///< eq. (1) on a coarse graph of representatives, carried back to every point
+};
+
 struct AnalysisParams {
+  CentralityMode centrality_mode = CentralityMode::Fast;
+  std::size_t num_representatives = 20000; ///< Fast mode: size of the coarse graph
   std::size_t num_samples = 0;    ///< per component; 0 = ceil(sqrt(n_c))
   float crossing_fraction = 0.3f; ///< Sec. 4.2 (b)
   RefinementParams refinement;
@@ -33,6 +42,9 @@ struct AnalysisParams {
   /// If set, called with a phase ("Cen", "Snod", "LRef") and 0 at its start, 1 at its end,
   /// and with the fraction done in between where known (from the calling thread only).
   std::function<void(const char* phase, double fraction)> progress;
+  /// Per vertex, distinct ranks for ties in the centrality (empty: the vertex index); the PCL
+  /// front end passes the input order, so results do not depend on its Morton numbering.
+  std::vector<std::uint32_t> tie_rank;
 };
 
 /** \brief The expensive stage: everything that depends only on the points, k and the

@@ -1,0 +1,36 @@
+/*
+ * pcl_ncut_seg: a fast approximation of the centrality of Sec. 4.1 on a coarsened graph.
+ */
+#pragma once
+
+#include <pcl_ncut_seg/core/centrality.h>
+
+namespace pcl_ncut_seg {
+
+/** \brief The default centrality: eq. (1) computed exactly (as computeCentrality()) on a
+ * coarse graph of about num_representatives vertices, then carried back to every point.
+ *
+ * 1. Representatives: a greedy cover of the graph by geodesic balls of one radius, visiting the
+ *    vertices in ascending tie_rank (see computeCentrality(); default the index); the radius is set
+ * so that about num_representatives balls cover the graph. Representatives are at least one radius
+ * apart.
+ * 2. Every vertex finds its two nearest representatives r1, r2 at graph distances d1 <= d2
+ *    (a two-label multi-source search).
+ * 3. The coarse graph joins the representatives of neighbouring cells (r1 differs across a kNN
+ *    edge (u, v)) with the shortest such path, d1(u) + |uv| + d1(v).
+ * 4. f is computed on the coarse graph with computeCentrality() (num_samples samples per
+ *    component, 0 = ceil(sqrt) of the coarse component's size).
+ * 5. f(p) = (d2 f(r1) + d1 f(r2)) / (d1 + d2): linear along the geodesic from r1 to r2, so f
+ *    keeps its slope and gains no plateaus or spurious extrema at the representatives. A
+ *    component with a single representative gets f(p) = d1 (its one sample's distance).
+ *
+ * With n <= num_representatives (or num_representatives == 0) this is computeCentrality().
+ * Samples are returned as vertex ids of the input graph. Deterministic for any number of
+ * threads.
+ */
+Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_representatives,
+                                   std::size_t num_samples, unsigned num_threads,
+                                   const std::uint32_t* tie_rank = nullptr,
+                                   const ProgressFn& progress = {});
+
+} // namespace pcl_ncut_seg

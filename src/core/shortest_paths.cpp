@@ -1,0 +1,208 @@
+// Sec. 4.1's geodesic distances: Dial's bucket queue and a cache-friendly vertex order.
+#include <pcl_ncut_seg/core/shortest_paths.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace pcl_ncut_seg {
+namespace {
+constexpr std::uint32_t kNotQueued = std::numeric_limits<std::uint32_t>::max();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+} // namespace
+
+BucketDijkstra::BucketDijkstra(const CsrGraph& graph)
+    : graph_(graph), queued_(graph.numVertices(), kNotQueued) {
+  double sum = 0.0;
+  float longest = 0.0f;
+  for (float w : graph.lengths) {
+    sum += w;
+    longest = std::max(longest, w);
+  }
+  const std::size_t m = graph.lengths.size();
+  double width = m > 0 && sum > 0.0 ? 2.0 * sum / static_cast<double>(m) : 1.0;
+  // An outlier edge must not need millions of buckets: at most 2^16 + 2 buckets of the circle.
+  width = std::max(width, static_cast<double>(longest) / 65536.0);
+  inv_width_ = 1.0 / width;
+  // Pending entries lie within longest / width + 1 buckets of the current one.
+  std::size_t count = 2;
+  while (count < static_cast<std::size_t>(longest * inv_width_) + 2)
+    count *= 2;
+  buckets_.resize(count);
+  mask_ = count - 1;
+}
+
+void BucketDijkstra::run(std::uint32_t source, float* dist, const float* bound,
+                         std::vector<std::uint32_t>* touched) {
+  // One loop per combination, so that the full searches of the centrality run the leanest.
+  if (bound)
+    touched ? runImpl<true, true>(source, dist, bound, touched)
+            : runImpl<true, false>(source, dist, bound, touched);
+  else
+    touched ? runImpl<false, true>(source, dist, bound, touched)
+            : runImpl<false, false>(source, dist, bound, touched);
+}
+
+template <bool kBounded, bool kRecord>
+void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bound,
+                             std::vector<std::uint32_t>* touched) {
+  // Absolute bucket numbers fit 32 bits for any graph whose diameter is < 2^32 widths.
+  const double inv_width = inv_width_;
+  const std::size_t mask = mask_;
+  auto bucketOf = [inv_width](float d) {
+    return static_cast<std::uint32_t>(static_cast<double>(d) * inv_width);
+  };
+  const std::uint32_t* offsets = graph_.offsets.data();
+  const std::uint32_t* targets = graph_.targets.data();
+  const float* lengths = graph_.lengths.data();
+  std::uint32_t* queued = queued_.data();
+  dist[source] = 0.0f;
+  if (kRecord)
+    touched->push_back(source);
+  buckets_[0].push_back(source);
+  queued[source] = 0;
+  std::size_t pending = 1;
+  for (std::uint32_t current = 0; pending > 0; ++current) {
+    std::vector<std::uint32_t>& bucket = buckets_[current & mask];
+    // Vertices improved within this bucket are appended to it and scanned again.
+    for (std::size_t i = 0; i < bucket.size(); ++i) {
+      const std::uint32_t v = bucket[i];
+      --pending;
+      if (queued[v] != current)
+        continue; // stale: v was re-queued in an earlier bucket, or is queued later in this one
+      queued[v] = kNotQueued;
+      const float dv = dist[v];
+      if (kBounded && dv >= bound[v])
+        continue;
+      const std::uint32_t end = offsets[v + 1];
+      for (std::uint32_t e = offsets[v]; e < end; ++e) {
+        const std::uint32_t t = targets[e];
+        const float nd = dv + lengths[e];
+        if (nd < dist[t]) {
+          if (kRecord && dist[t] == kInf)
+            touched->push_back(t);
+          dist[t] = nd;
+          const std::uint32_t b = bucketOf(nd);
+          if (queued[t] != b) {
+            queued[t] = b;
+            buckets_[b & mask].push_back(t);
+            ++pending;
+          }
+        }
+      }
+    }
+    bucket.clear();
+  }
+}
+
+CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& order) {
+  const std::size_t n = graph.numVertices();
+  std::vector<std::uint32_t> position(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    position[order[i]] = i;
+  CsrGraph out;
+  out.offsets.resize(n + 1);
+  out.targets.resize(graph.targets.size());
+  out.lengths.resize(graph.lengths.size());
+  out.offsets[0] = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t v = order[i];
+    std::uint32_t at = out.offsets[i];
+    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+      out.targets[at] = position[graph.targets[e]];
+      out.lengths[at++] = graph.lengths[e];
+    }
+    out.offsets[i + 1] = at;
+  }
+  return out;
+}
+
+NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::uint32_t>& sources) {
+  const std::size_t n = graph.numVertices();
+  NearestSources out;
+  out.at.assign(n, NearestSources::Labels{kNotQueued, kNotQueued, kInf, kInf});
+  // Dial's buckets as in BucketDijkstra, label-correcting: a vertex is queued in the bucket of
+  // its smallest changed label and passes both labels on when scanned.
+  double sum = 0.0;
+  float longest = 0.0f;
+  for (float w : graph.lengths) {
+    sum += w;
+    longest = std::max(longest, w);
+  }
+  const std::size_t m = graph.lengths.size();
+  double width = m > 0 && sum > 0.0 ? 2.0 * sum / static_cast<double>(m) : 1.0;
+  width = std::max(width, static_cast<double>(longest) / 65536.0);
+  const double inv_width = 1.0 / width;
+  std::size_t count = 2;
+  while (count < static_cast<std::size_t>(longest * inv_width) + 2)
+    count *= 2;
+  std::vector<std::vector<std::uint32_t>> buckets(count);
+  const std::size_t mask = count - 1;
+  std::vector<std::uint32_t> queued(n, kNotQueued);
+  std::size_t pending = 0;
+  std::uint32_t current = 0;
+  auto push = [&](std::uint32_t v, float d) {
+    // A label re-sent from a vertex scanned late can fall before the current bucket; it
+    // cannot improve anything there, but must not wrap around the circle.
+    const std::uint32_t b =
+        std::max(current, static_cast<std::uint32_t>(static_cast<double>(d) * inv_width));
+    if (queued[v] != kNotQueued && queued[v] <= b)
+      return; // already waiting in an earlier (or this) bucket; it will send both labels
+    queued[v] = b;
+    buckets[b & mask].push_back(v);
+    ++pending;
+  };
+  // Offer the label (source s, distance d) to v; true if v's labels changed.
+  auto offer = [&](std::uint32_t v, std::uint32_t s, float d) {
+    if (s == out.at[v].first) {
+      if (!(d < out.at[v].first_dist))
+        return false;
+      out.at[v].first_dist = d;
+    } else if (s == out.at[v].second) {
+      if (!(d < out.at[v].second_dist))
+        return false;
+      out.at[v].second_dist = d;
+      if (out.at[v].second_dist < out.at[v].first_dist) {
+        std::swap(out.at[v].first, out.at[v].second);
+        std::swap(out.at[v].first_dist, out.at[v].second_dist);
+      }
+    } else if (d < out.at[v].first_dist) {
+      out.at[v].second = out.at[v].first;
+      out.at[v].second_dist = out.at[v].first_dist;
+      out.at[v].first = s;
+      out.at[v].first_dist = d;
+    } else if (d < out.at[v].second_dist) {
+      out.at[v].second = s;
+      out.at[v].second_dist = d;
+    } else {
+      return false;
+    }
+    return true;
+  };
+  for (std::uint32_t i = 0; i < sources.size(); ++i)
+    if (offer(sources[i], i, 0.0f))
+      push(sources[i], 0.0f);
+  for (; pending > 0; ++current) {
+    std::vector<std::uint32_t>& bucket = buckets[current & mask];
+    for (std::size_t i = 0; i < bucket.size(); ++i) {
+      const std::uint32_t v = bucket[i];
+      --pending;
+      if (queued[v] != current)
+        continue;
+      queued[v] = kNotQueued;
+      const std::uint32_t s1 = out.at[v].first, s2 = out.at[v].second;
+      const float d1 = out.at[v].first_dist, d2 = out.at[v].second_dist;
+      for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+        const std::uint32_t t = graph.targets[e];
+        const float w = graph.lengths[e];
+        if (offer(t, s1, d1 + w))
+          push(t, d1 + w);
+        if (s2 != kNotQueued && offer(t, s2, d2 + w))
+          push(t, d2 + w);
+      }
+    }
+    bucket.clear();
+  }
+  return out;
+}
+
+} // namespace pcl_ncut_seg
