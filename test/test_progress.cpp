@@ -24,13 +24,13 @@ TEST(Progress, CentralityReportsRisingFractionsFromTheCallingThread) {
   const std::thread::id caller = std::this_thread::get_id();
   std::vector<double> fractions;
   bool other_thread = false;
-  const Centrality with = computeCentrality(g, 0, 2, [&](double f) {
+  const Centrality with = computeCentrality(g, 0, 2, nullptr, [&](double f) {
     other_thread = other_thread || std::this_thread::get_id() != caller;
     fractions.push_back(f);
   });
   EXPECT_FALSE(other_thread);
   ASSERT_GE(fractions.size(), 2u);
-  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_GT(fractions.front(), 0.0); // the phase start is the caller's to report
   EXPECT_EQ(fractions.back(), 1.0);
   for (std::size_t i = 1; i < fractions.size(); ++i)
     EXPECT_LE(fractions[i - 1], fractions[i]);

@@ -198,8 +198,8 @@ public:
   void setAdjacentShare(double share);
   double getAdjacentShare() const { return similarity_.adjacent_share; }
 
-  /** \brief Threads for the centrality phase; 0 (default) uses all cores. Output does not
-   * depend on it. */
+  /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
+   * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);
   unsigned getNumberOfThreads() const { return num_threads_; }
 

@@ -162,15 +162,16 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
   // not depend on the order, hence not on the number of threads.
   int threads = 1;
 #ifdef _OPENMP
-  threads = num_threads > 0 ? static_cast<int>(num_threads) : omp_get_max_threads();
+  // More threads than processors would only cost memory (one distance array each).
+  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
+  threads = num_threads > 0 ? static_cast<int>(std::min<unsigned>(num_threads, usable))
+                            : omp_get_max_threads();
 #else
   (void)num_threads;
 #endif
   threads = std::max(1, std::min<int>(threads, static_cast<int>(tasks.size())));
   std::vector<std::vector<std::int64_t>> partial(threads);
   std::atomic<std::size_t> done{0};
-  if (progress)
-    progress(0.0);
 #pragma omp parallel num_threads(threads)
   {
     int t = 0;

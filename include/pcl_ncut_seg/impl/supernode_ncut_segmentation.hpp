@@ -34,6 +34,17 @@ inline int maxThreads() {
   return 1;
 #endif
 }
+/// The threads to use for a request (0 = all cores): never more than the processors, which
+/// would only cost memory.
+inline int usableThreads(unsigned requested) {
+#ifdef _OPENMP
+  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
+  return requested > 0 ? static_cast<int>(std::min<unsigned>(requested, usable)) : maxThreads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
 } // namespace ncut_detail
 } // namespace pcl
 
@@ -471,8 +482,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
     // Queries in vertex (Morton) order visit the search tree coherently.
-    const int threads =
-        num_threads_ > 0 ? static_cast<int>(num_threads_) : ncut_detail::maxThreads();
+    const int threads = ncut_detail::usableThreads(num_threads_);
 #pragma omp parallel num_threads(threads)
     {
       pcl::Indices nn;
@@ -564,10 +574,6 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   if (progress_)
     progress_("HSeg", 0.0);
   result_ = pcl_ncut_seg::cut(*analysis_, similarity_, cut_, times_);
-<<<<<<< HEAD
-  if (progress_)
-    progress_("HSeg", 1.0);
-=======
   // Number segments in order of their smallest input index (vertices are in Morton order).
   std::vector<int> smallest(result_.num_segments, std::numeric_limits<int>::max());
   for (std::size_t i = 0; i < point_index_.size(); ++i) {
@@ -586,15 +592,13 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   for (auto& s : result_.supernode_segment)
     if (s < rank.size())
       s = rank[s];
->>>>>>> issue-5
+  if (progress_)
+    progress_("HSeg", 1.0);
   segments.resize(result_.num_segments);
   for (std::size_t i = 0; i < point_index_.size(); ++i)
     segments[result_.point_segment[i]].indices.push_back(point_index_[i]);
   for (const auto& d : duplicates_)
     segments[result_.point_segment[d.second]].indices.push_back(d.first);
-  if (!duplicates_.empty())
-    for (auto& s : segments)
-      std::sort(s.indices.begin(), s.indices.end());
   for (auto& s : segments)
     std::sort(s.indices.begin(), s.indices.end());
   for (auto& s : segments)
