@@ -54,6 +54,7 @@ struct Options {
   int k = -1;
   double crossing = -1, area = -1, height = -1, beta = -1, alpha1 = -1, alpha2 = -1;
   bool paper = false;
+  bool exact = false;
   int adjacent = -1; ///< -1: default; 0/1: setConnectAllAdjacent
   int gap = -1;      ///< -1: default; 0/1: setLargestGapStopping
   int max_segments = -1;
@@ -87,6 +88,7 @@ void printHelp() {
          "  -gap 0|1          setLargestGapStopping (default: the library's default)\n"
          "  -maxseg N         setMaxSegments (default: the library's default)\n"
          "  -gapfloor F       setGapFloor (default: the library's default)\n"
+         "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
 }
@@ -131,6 +133,10 @@ Options parseOptions(int argc, char** argv) {
     }
     if (a == "-paper") {
       o.paper = true;
+      continue;
+    }
+    if (a == "-exact") {
+      o.exact = true;
       continue;
     }
     if (i + 1 >= argc)
@@ -252,6 +258,8 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setLargestGapStopping(false);
     seg.setMinSegmentFraction(0.0);
   }
+  if (o.paper || o.exact)
+    seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   if ((o.k >= 0 && seg.getNumberOfNeighbours() != o.k) ||
       (o.beta >= 0 && seg.getBeta() != o.beta) || (o.alpha1 >= 0 && seg.getAlpha1() != o.alpha1) ||
       (o.alpha2 >= 0 && seg.getAlpha2() != o.alpha2) ||

@@ -265,9 +265,15 @@ std::vector<Flag> algorithmFlags() {
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
                num(d.getMinSegmentFraction()), 0, 0.5),
+      switchFlag("-exact", "exact centrality: sqrt(n) searches on the full kNN graph, as in the "
+                           "paper, instead of the Fast coarse graph for large clouds"),
+      intFlag("-representatives", "R",
+              "Fast centrality: points of the coarse graph, >= 100 (clouds up to R points are "
+              "computed exactly)",
+              num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernodes that meet at no saddle, recursive bisection while "
-                           "NCut <= T instead of the largest-gap rule"),
+                           "NCut <= T instead of the largest-gap rule, exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
       realFlag("-face_angle", "DEG",
@@ -331,11 +337,16 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setAdjacentShare(flags.real("-adjacent_share"));
   if (flags.has("-min_fraction"))
     seg.setMinSegmentFraction(flags.real("-min_fraction"));
+  if (flags.has("-exact"))
+    seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
+  if (flags.has("-representatives"))
+    seg.setNumberOfRepresentatives(static_cast<int>(flags.integer("-representatives")));
   if (flags.has("-paper")) {
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);
     seg.setLargestGapStopping(false);
+    seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;
 }
