@@ -120,6 +120,7 @@ public:
     first_segments_ = segments.size();
     current_segments_ = segments.size();
     first_threshold_ = seg_.getThreshold();
+    largest_gap_ = seg_.getLargestGapStopping();
     by_number_ = seg_.getNumberOfSegments() > 0;
     colored_ = seg_.getColoredCloud();
     return true;
@@ -157,7 +158,8 @@ public:
     if (view == View::Segments || view == View::Coarser || view == View::Finer) {
       t << "Segments: t = " << current_segments_;
       if (current_segments_ == first_segments_ && !by_number_)
-        t << " (NCut threshold " << first_threshold_ << ")";
+        t << (largest_gap_ ? " (largest NCut gap, NCut <= " : " (NCut threshold ")
+          << first_threshold_ << ")";
       else if (current_segments_ != first_segments_)
         t << " (hierarchy, " << (current_segments_ > first_segments_ ? "finer" : "coarser")
           << " than the first cut's " << first_segments_ << "; expensive stage "
@@ -236,6 +238,7 @@ private:
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr colored_;
   std::size_t first_segments_ = 0, current_segments_ = 0;
   double first_threshold_ = 0;
+  bool largest_gap_ = false;
   bool by_number_ = false;
   bool reused_ = true;
 };
