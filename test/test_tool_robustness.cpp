@@ -310,7 +310,21 @@ TEST_F(ToolRobustness, EveryOptionAtTheEdgesOfItsRange) {
                               "-splits 2147483647",
                               "-threads 0",
                               "-threads 1",
-                              "-threads 2147483647"}) {
+                              "-threads 2147483647",
+                              "-exact",
+                              "-representatives 100",
+                              "-representatives 2147483647",
+                              "-gap_floor 1e-300",
+                              "-gap_floor 1e300",
+                              "-max_segments 1",
+                              "-max_segments 2147483647",
+                              "-adjacent_share 0",
+                              "-adjacent_share 1",
+                              "-min_fraction 0",
+                              "-min_fraction 0.5",
+                              "-cad",
+                              "-cad -face_angle 1e-30",
+                              "-cad -face_angle 90"}) {
     SCOPED_TRACE(options);
     segment(*shape, options);
   }
@@ -344,7 +358,19 @@ TEST_F(ToolRobustness, EveryOptionJustPastItsRangeFailsCleanly) {
                               "-splits 0",
                               "-splits 2147483648",
                               "-threads -1",
-                              "-threads 2147483648"})
+                              "-threads 2147483648",
+                              "-representatives 99",
+                              "-representatives 2147483648",
+                              "-gap_floor 0",
+                              "-gap_floor -1e-300",
+                              "-max_segments 0",
+                              "-max_segments 2147483648",
+                              "-adjacent_share -1e-30",
+                              "-adjacent_share 1.0000001",
+                              "-min_fraction -1e-30",
+                              "-min_fraction 0.5000001",
+                              "-face_angle 0",
+                              "-face_angle 90.000001"})
     expectCleanFailure(std::string("in.pcd out.pcd ") + options);
 }
 
