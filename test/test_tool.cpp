@@ -632,7 +632,8 @@ TEST_F(ToolTest, AsciiByDefaultBinaryOnRequest) {
 
 TEST_F(ToolTest, AddKeepsEveryInputFieldAndAddsLabel) {
   pcl::PointCloud<pcl::PointXYZI> input;
-  for (const auto& p : *makeShape()) {
+  const auto shape = makeShape(); // kept alive: a range-for does not extend a temporary's owner
+  for (const auto& p : *shape) {
     pcl::PointXYZI q;
     q.x = p.x, q.y = p.y, q.z = p.z;
     q.intensity = static_cast<float>(input.size()) * 0.5f;
@@ -666,7 +667,7 @@ TEST_F(ToolTest, AddKeepsEveryInputFieldAndAddsLabel) {
 
   // An input that has a label already: a warning, and the label is replaced.
   pcl::PointCloud<pcl::PointXYZL> labelled;
-  for (const auto& p : *makeShape()) {
+  for (const auto& p : *shape) {
     pcl::PointXYZL q;
     q.x = p.x, q.y = p.y, q.z = p.z;
     q.label = 77;
