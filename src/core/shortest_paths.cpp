@@ -8,10 +8,16 @@ namespace pcl_ncut_seg {
 namespace {
 constexpr std::uint32_t kNotQueued = std::numeric_limits<std::uint32_t>::max();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-} // namespace
 
-BucketDijkstra::BucketDijkstra(const CsrGraph& graph)
-    : graph_(graph), queued_(graph.numVertices(), kNotQueued) {
+/// Dial's bucket circle for a graph: bucket width about twice the mean edge, and a power-of-two
+/// number of buckets that covers the longest edge (pending entries lie within longest / width
+/// + 1 buckets of the current one).
+struct BucketCircle {
+  double inv_width = 1.0;
+  std::size_t count = 2;
+};
+
+BucketCircle bucketCircle(const CsrGraph& graph) {
   double sum = 0.0;
   float longest = 0.0f;
   for (float w : graph.lengths) {
@@ -22,13 +28,20 @@ BucketDijkstra::BucketDijkstra(const CsrGraph& graph)
   double width = m > 0 && sum > 0.0 ? 2.0 * sum / static_cast<double>(m) : 1.0;
   // An outlier edge must not need millions of buckets: at most 2^16 + 2 buckets of the circle.
   width = std::max(width, static_cast<double>(longest) / 65536.0);
-  inv_width_ = 1.0 / width;
-  // Pending entries lie within longest / width + 1 buckets of the current one.
-  std::size_t count = 2;
-  while (count < static_cast<std::size_t>(longest * inv_width_) + 2)
-    count *= 2;
-  buckets_.resize(count);
-  mask_ = count - 1;
+  BucketCircle c;
+  c.inv_width = 1.0 / width;
+  while (c.count < static_cast<std::size_t>(longest * c.inv_width) + 2)
+    c.count *= 2;
+  return c;
+}
+} // namespace
+
+BucketDijkstra::BucketDijkstra(const CsrGraph& graph)
+    : graph_(graph), queued_(graph.numVertices(), kNotQueued) {
+  const BucketCircle circle = bucketCircle(graph);
+  inv_width_ = circle.inv_width;
+  buckets_.resize(circle.count);
+  mask_ = circle.count - 1;
 }
 
 void BucketDijkstra::run(std::uint32_t source, float* dist, const float* bound,
@@ -122,21 +135,10 @@ NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::u
   out.at.assign(n, NearestSources::Labels{kNotQueued, kNotQueued, kInf, kInf});
   // Dial's buckets as in BucketDijkstra, label-correcting: a vertex is queued in the bucket of
   // its smallest changed label and passes both labels on when scanned.
-  double sum = 0.0;
-  float longest = 0.0f;
-  for (float w : graph.lengths) {
-    sum += w;
-    longest = std::max(longest, w);
-  }
-  const std::size_t m = graph.lengths.size();
-  double width = m > 0 && sum > 0.0 ? 2.0 * sum / static_cast<double>(m) : 1.0;
-  width = std::max(width, static_cast<double>(longest) / 65536.0);
-  const double inv_width = 1.0 / width;
-  std::size_t count = 2;
-  while (count < static_cast<std::size_t>(longest * inv_width) + 2)
-    count *= 2;
-  std::vector<std::vector<std::uint32_t>> buckets(count);
-  const std::size_t mask = count - 1;
+  const BucketCircle circle = bucketCircle(graph);
+  const double inv_width = circle.inv_width;
+  std::vector<std::vector<std::uint32_t>> buckets(circle.count);
+  const std::size_t mask = circle.count - 1;
   std::vector<std::uint32_t> queued(n, kNotQueued);
   std::size_t pending = 0;
   std::uint32_t current = 0;
