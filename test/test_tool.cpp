@@ -13,6 +13,8 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include "support/text_files.h"
+
 #include <algorithm>
 #include <cstring>
 #include <cmath>
@@ -32,6 +34,11 @@
 
 namespace fs = std::filesystem;
 
+using pcl_ncut_seg::test::readText;
+using pcl_ncut_seg::test::quote;
+using pcl_ncut_seg::test::listDir;
+using pcl_ncut_seg::test::lines;
+
 namespace {
 
 const std::string kTool = PCL_NCUT_SEG_TOOL;
@@ -41,39 +48,6 @@ struct ToolRun {
   int status = -1; ///< exit status, or -1 if the tool did not exit normally
   std::string out, err;
 };
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-/** The files in a directory, by name. */
-std::set<std::string> listDir(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir))
-    names.insert(entry.path().filename().string());
-  return names;
-}
-
-/** Lines of a text without terminal colour codes. */
-std::vector<std::string> lines(const std::string& text) {
-  const std::string plain = std::regex_replace(text, std::regex("\x1b\\[[0-9;]*m"), "");
-  std::vector<std::string> result;
-  std::stringstream ss(plain);
-  std::string line;
-  while (std::getline(ss, line))
-    result.push_back(line);
-  return result;
-}
 
 /** A sphere of radius 1 with three capsules (radius 0.3, length 2.2) sticking out of it along
  * +x, +y and -x: a palm with three fingers, surface points only. Deterministic. */

@@ -9,6 +9,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/metrics.h>
 #include <support/shapes.h>
+#include <support/text_files.h>
 
 #include <pcl/common/point_tests.h>
 #include <pcl/io/pcd_io.h>
@@ -34,35 +35,15 @@ namespace fs = std::filesystem;
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 using namespace pcl_ncut_seg::test;
 
+using pcl_ncut_seg::test::readText;
+using pcl_ncut_seg::test::listDir;
+using pcl_ncut_seg::test::lines;
+
 namespace {
 
 const std::string kTool = PCL_NCUT_SEG_TOOL;
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 const float kInf = std::numeric_limits<float>::infinity();
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::set<std::string> listDir(const fs::path& dir) {
-  std::set<std::string> names;
-  for (const auto& entry : fs::directory_iterator(dir))
-    names.insert(entry.path().filename().string());
-  return names;
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  const std::string plain = std::regex_replace(text, std::regex("\x1b\\[[0-9;]*m"), "");
-  std::vector<std::string> result;
-  std::stringstream ss(plain);
-  std::string line;
-  while (std::getline(ss, line))
-    result.push_back(line);
-  return result;
-}
 
 /** The library's labels for a cloud (1..t, 0 for none), with default parameters. */
 std::vector<std::uint32_t> libraryLabels(const Cloud::Ptr& cloud) {

@@ -10,6 +10,7 @@
 
 #include "png_image.h"
 #include "support/shapes.h"
+#include "support/text_files.h"
 
 #include <pcl/io/pcd_io.h>
 
@@ -29,6 +30,9 @@
 namespace fs = std::filesystem;
 using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
 
+using pcl_ncut_seg::test::readText;
+using pcl_ncut_seg::test::lines;
+
 namespace {
 
 const std::string kViewer = PCL_NCUT_SEG_VIEWER;
@@ -37,23 +41,6 @@ struct ViewerRun {
   int status = -1;
   std::string out, err;
 };
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  const std::string plain = std::regex_replace(text, std::regex("\x1b\\[[0-9;]*m"), "");
-  std::vector<std::string> result;
-  std::stringstream ss(plain);
-  std::string line;
-  while (std::getline(ss, line))
-    result.push_back(line);
-  return result;
-}
 
 bool haveXvfbRun() {
   return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;

@@ -1,0 +1,42 @@
+#include "support/text_files.h"
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+namespace pcl_ncut_seg {
+namespace test {
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::set<std::string> listDir(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    names.insert(entry.path().filename().string());
+  return names;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  const std::string plain = std::regex_replace(text, std::regex("\x1b\\[[0-9;]*m"), "");
+  std::vector<std::string> result;
+  std::stringstream ss(plain);
+  std::string line;
+  while (std::getline(ss, line))
+    result.push_back(line);
+  return result;
+}
+
+} // namespace test
+} // namespace pcl_ncut_seg
