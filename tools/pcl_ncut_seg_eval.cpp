@@ -60,6 +60,7 @@ struct Options {
   int max_segments = -1;
   double gap_floor = -1;
   double adjacent_share = -1;
+  double bridge_gap = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -88,6 +89,7 @@ void printHelp() {
          "  -gap 0|1          setLargestGapStopping (default: the library's default)\n"
          "  -maxseg N         setMaxSegments (default: the library's default)\n"
          "  -gapfloor F       setGapFloor (default: the library's default)\n"
+         "  -bridge F         setBridgeGap (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -185,6 +187,8 @@ Options parseOptions(int argc, char** argv) {
       o.gap = static_cast<int>(b);
     } else if (a == "-share") {
       o.adjacent_share = parseNumber(a, v);
+    } else if (a == "-bridge") {
+      o.bridge_gap = parseNumber(a, v);
     } else if (a == "-gapfloor") {
       o.gap_floor = parseNumber(a, v);
     } else if (a == "-maxseg") {
@@ -251,7 +255,10 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setGapFloor(o.gap_floor);
   if (o.gap_floor >= 0 && seg.getGapFloor() != o.gap_floor)
     fail("-gapfloor needs a value > 0");
+  if (o.bridge_gap >= 0)
+    seg.setBridgeGap(o.bridge_gap);
   if (o.paper) {
+    seg.setBridgeGap(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

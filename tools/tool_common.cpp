@@ -261,6 +261,10 @@ std::vector<Flag> algorithmFlags() {
                "join touching supernodes that meet at no saddle when their contact is at least "
                "this share of the smaller total contact, in [0, 1]",
                num(d.getAdjacentShare()), 0, 1),
+      realFlag("-bridge_gap", "G",
+               "join kNN-graph components whose shortest link is at most G kNN radii long "
+               "(sampling gaps), >= 0; 0 = never",
+               num(d.getBridgeGap()), 0),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -335,6 +339,8 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setMaxSegments(static_cast<int>(flags.integer("-max_segments")));
   if (flags.has("-adjacent_share"))
     seg.setAdjacentShare(flags.real("-adjacent_share"));
+  if (flags.has("-bridge_gap"))
+    seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-min_fraction"))
     seg.setMinSegmentFraction(flags.real("-min_fraction"));
   if (flags.has("-exact"))
@@ -346,6 +352,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);
     seg.setLargestGapStopping(false);
+    seg.setBridgeGap(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;

@@ -198,6 +198,14 @@ public:
   void setAdjacentShare(double share);
   double getAdjacentShare() const { return similarity_.adjacent_share; }
 
+  /** \brief Join components of the kNN graph that only a sampling gap separates: two
+   * components are linked by their shortest point pair when it is at most this many kNN radii
+   * long (the larger radius of the pair's two points), so that each does not become a segment
+   * of its own; >= 0, default 3, 0 = never (the paper). Objects farther apart stay separate.
+   * Changing it invalidates the expensive stage. */
+  void setBridgeGap(double radii);
+  double getBridgeGap() const { return bridge_gap_; }
+
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
    * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);
@@ -268,6 +276,7 @@ protected:
   float height_fraction_ = 0.01f;
   unsigned num_threads_ = 0;
   bool cad_mode_ = false;
+  double bridge_gap_ = 3.0;
   pcl_ncut_seg::CadParams cad_;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;

@@ -266,6 +266,22 @@ LabeledShape makeTwoObjects(std::size_t n, std::uint64_t seed, const SamplingOpt
   return sampleUnion(parts, 2, n, seed, options);
 }
 
+LabeledShape makeGappedBar(std::size_t n, std::uint64_t seed, double gap) {
+  std::vector<Primitive> parts;
+  parts.push_back(capsule({-1.5, 0, 0}, {1.5, 0, 0}, 0.25, 0));
+  const LabeledShape bar = sampleUnion(parts, 1, n, seed, {});
+  LabeledShape out;
+  out.cloud.reset(new pcl::PointCloud<pcl::PointXYZ>);
+  out.num_parts = 2;
+  for (const auto& p : *bar.cloud) {
+    if (std::abs(p.x) < 0.5 * gap)
+      continue;
+    out.cloud->push_back(p);
+    out.labels.push_back(p.x < 0 ? 0 : 1);
+  }
+  return out;
+}
+
 LabeledShape makeShape(const std::string& name, std::size_t n, std::uint64_t seed,
                        const SamplingOptions& options) {
   if (name == "hand")

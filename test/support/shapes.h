@@ -52,6 +52,11 @@ LabeledShape makeDumbbell(std::size_t n, std::uint64_t seed, const SamplingOptio
 /** \brief Two separate objects 2 units apart: a sphere (label 0) and a capsule (label 1). */
 LabeledShape makeTwoObjects(std::size_t n, std::uint64_t seed, const SamplingOptions& options = {});
 
+/** \brief A bar (capsule of radius 0.25 from x = -1.5 to 1.5) with no points in the band
+ * |x| < gap / 2, as a surface sampled with a gap: the half with x < 0 is label 0, the other 1.
+ * With gap = 0 it is one bar. About n points (those in the band are dropped). */
+LabeledShape makeGappedBar(std::size_t n, std::uint64_t seed, double gap);
+
 /** \brief All the shapes above by name ("hand", "quadruped", "dumbbell", "two_objects"); throws
  * std::invalid_argument for another name. */
 LabeledShape makeShape(const std::string& name, std::size_t n, std::uint64_t seed,

@@ -11,6 +11,7 @@
 #include <pcl/features/normal_3d.h>
 #include <pcl/search/kdtree.h>
 
+#include <pcl_ncut_seg/core/bridging.h>
 #include <pcl_ncut_seg/core/morton.h>
 
 #include <algorithm>
@@ -298,6 +299,19 @@ void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect)
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setBridgeGap(double radii) {
+  if (!(radii >= 0.0) || !std::isfinite(radii)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setBridgeGap] radii must be finite and >= 0, "
+              "got %g; keeping %g.\n",
+              radii, bridge_gap_);
+    return;
+  }
+  if (radii != bridge_gap_)
+    invalidate();
+  bridge_gap_ = radii;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
   if (!(share >= 0.0 && share <= 1.0)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
@@ -510,6 +524,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   }
   pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
   std::vector<std::uint32_t>().swap(knn); // free before the expensive stage
+  if (bridge_gap_ > 0.0)
+    pcl_ncut_seg::bridgeComponents(graph, xyz.data(), bridge_gap_);
   if (!cad_mode_) // CAD mode fits planes to the coordinates later
     std::vector<float>().swap(xyz);
   times_ = pcl_ncut_seg::PhaseTimes();

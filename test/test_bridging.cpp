@@ -1,0 +1,162 @@
+/*
+ * Bridging components of the kNN graph that only a sampling gap separates
+ * (bridgeComponents, SupernodeNCutSegmentation::setBridgeGap).
+ */
+#include <pcl_ncut_seg/core/bridging.h>
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+/// Two 10 x 10 grids of spacing 1 in the plane z = 0, the second `gap` further along x than
+/// the first ends (x in [0, 9] and [9 + gap, 18 + gap]).
+std::vector<float> twoGrids(double gap) {
+  std::vector<float> xyz;
+  for (int part = 0; part < 2; ++part)
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) {
+        xyz.push_back(static_cast<float>(i + part * (9 + gap)));
+        xyz.push_back(static_cast<float>(j));
+        xyz.push_back(0.0f);
+      }
+  return xyz;
+}
+
+/// The symmetric kNN graph by brute force.
+CsrGraph knnGraph(const std::vector<float>& xyz, std::size_t k) {
+  const std::size_t n = xyz.size() / 3;
+  std::vector<std::uint32_t> knn(n * k);
+  for (std::size_t p = 0; p < n; ++p) {
+    std::vector<std::pair<float, std::uint32_t>> d;
+    for (std::size_t q = 0; q < n; ++q)
+      if (q != p) {
+        const float dx = xyz[3 * p] - xyz[3 * q], dy = xyz[3 * p + 1] - xyz[3 * q + 1];
+        d.emplace_back(dx * dx + dy * dy, static_cast<std::uint32_t>(q));
+      }
+    std::sort(d.begin(), d.end());
+    for (std::size_t j = 0; j < k; ++j)
+      knn[p * k + j] = d[j].second;
+  }
+  return buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+}
+
+std::size_t components(const CsrGraph& g) {
+  std::vector<std::uint32_t> c;
+  return connectedComponents(g, c);
+}
+
+} // namespace
+
+TEST(BridgeComponents, JoinsASamplingGapByItsShortestLink) {
+  const std::vector<float> xyz = twoGrids(2.5);
+  CsrGraph g = knnGraph(xyz, 4); // kNN radius 1 (and sqrt(2) on a few points)
+  ASSERT_EQ(components(g), 2u);
+  const std::size_t edges = g.numDirectedEdges();
+  std::vector<double> ratios;
+  EXPECT_EQ(bridgeComponents(g, xyz.data(), 3.0, &ratios), 1u);
+  EXPECT_EQ(components(g), 1u);
+  EXPECT_EQ(g.numDirectedEdges(), edges + 2); // one bridge, both directions
+  ASSERT_EQ(ratios.size(), 1u);
+  EXPECT_LE(ratios[0], 2.5 + 1e-6);
+  // The bridge is a shortest pair: length 2.5, across the gap along x.
+  bool found = false;
+  for (std::size_t v = 0; v < g.numVertices(); ++v) {
+    EXPECT_TRUE(
+        std::is_sorted(g.targets.begin() + g.offsets[v], g.targets.begin() + g.offsets[v + 1]));
+    for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
+      if ((v < 100) != (g.targets[e] < 100)) {
+        EXPECT_NEAR(g.lengths[e], 2.5, 1e-5);
+        found = true;
+      }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(BridgeComponents, KeepsObjectsFartherApartThanTheLimit) {
+  // kNN radii are 1 to 2 (the corners' farthest graph neighbour is 2 away).
+  const std::vector<float> xyz = twoGrids(8.0);
+  CsrGraph g = knnGraph(xyz, 4);
+  EXPECT_EQ(bridgeComponents(g, xyz.data(), 3.0), 0u);
+  EXPECT_EQ(components(g), 2u);
+  EXPECT_EQ(bridgeComponents(g, xyz.data(), 0.0), 0u); // 0: never
+  EXPECT_EQ(bridgeComponents(g, xyz.data(), 5.0), 1u);
+  EXPECT_EQ(components(g), 1u);
+  // A limit far beyond the cloud's size looks at every point (and does not hang).
+  CsrGraph h = knnGraph(xyz, 4);
+  EXPECT_EQ(bridgeComponents(h, xyz.data(), 1e300), 1u);
+  EXPECT_EQ(components(h), 1u);
+}
+
+TEST(BridgeComponents, ThreePiecesInAChainGetTwoBridges) {
+  std::vector<float> xyz = twoGrids(2.5);
+  for (int i = 0; i < 10; ++i) // a third grid 2.5 beyond the second
+    for (int j = 0; j < 10; ++j) {
+      xyz.push_back(static_cast<float>(i + 2 * (9 + 2.5)));
+      xyz.push_back(static_cast<float>(j));
+      xyz.push_back(0.0f);
+    }
+  CsrGraph g = knnGraph(xyz, 4);
+  ASSERT_EQ(components(g), 3u);
+  EXPECT_EQ(bridgeComponents(g, xyz.data(), 3.0), 2u);
+  EXPECT_EQ(components(g), 1u);
+}
+
+namespace {
+std::size_t analysedComponents(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg) {
+  return components(seg.getAnalysis()->graph);
+}
+} // namespace
+
+TEST(BridgeGap, ABarSampledWithAGapIsOneSurface) {
+  // A bar with a band of about 2 kNN radii left unsampled (spacing about 0.04 at n = 3000).
+  const test::LabeledShape bar = test::makeGappedBar(3000, 1, 0.15);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_EQ(seg.getBridgeGap(), 3.0);
+  seg.setInputCloud(bar.cloud);
+  std::vector<pcl::PointIndices> segments;
+  seg.setBridgeGap(0.0);
+  seg.extract(segments);
+  ASSERT_NE(seg.getAnalysis(), nullptr);
+  EXPECT_EQ(analysedComponents(seg), 2u);
+  seg.setBridgeGap(3.0); // the default
+  seg.extract(segments);
+  EXPECT_EQ(analysedComponents(seg), 1u);
+}
+
+TEST(BridgeGap, SeparateObjectsStaySeparate) {
+  const test::LabeledShape two = test::makeTwoObjects(4000, 1);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(two.cloud);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  EXPECT_EQ(analysedComponents(seg), 2u);
+  for (const auto& s : segments) {
+    std::set<int> parts;
+    for (int i : s.indices)
+      parts.insert(two.labels[static_cast<std::size_t>(i)]);
+    EXPECT_EQ(parts.size(), 1u);
+  }
+}
+
+TEST(BridgeGap, SetterRejectsBadValues) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setBridgeGap(1.5);
+  for (double bad : {-1e-30, -1.0, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
+    seg.setBridgeGap(bad);
+    EXPECT_EQ(seg.getBridgeGap(), 1.5);
+  }
+  seg.setBridgeGap(0.0);
+  EXPECT_EQ(seg.getBridgeGap(), 0.0);
+}
