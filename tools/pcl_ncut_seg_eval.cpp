@@ -61,6 +61,7 @@ struct Options {
   double gap_floor = -1;
   double adjacent_share = -1;
   double bridge_gap = -1;
+  double concavity = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -90,6 +91,7 @@ void printHelp() {
          "  -maxseg N         setMaxSegments (default: the library's default)\n"
          "  -gapfloor F       setGapFloor (default: the library's default)\n"
          "  -bridge F         setBridgeGap (default: the library's default)\n"
+         "  -concavity W      setConcavityWeight (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -187,6 +189,8 @@ Options parseOptions(int argc, char** argv) {
       o.gap = static_cast<int>(b);
     } else if (a == "-share") {
       o.adjacent_share = parseNumber(a, v);
+    } else if (a == "-concavity") {
+      o.concavity = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
     } else if (a == "-gapfloor") {
@@ -257,8 +261,11 @@ void configure(Segmenter& seg, const Options& o) {
     fail("-gapfloor needs a value > 0");
   if (o.bridge_gap >= 0)
     seg.setBridgeGap(o.bridge_gap);
+  if (o.concavity >= 0)
+    seg.setConcavityWeight(o.concavity);
   if (o.paper) {
     seg.setBridgeGap(0.0);
+    seg.setConcavityWeight(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

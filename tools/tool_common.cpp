@@ -265,6 +265,10 @@ std::vector<Flag> algorithmFlags() {
                "join kNN-graph components whose shortest link is at most G kNN radii long "
                "(sampling gaps), >= 0; 0 = never",
                num(d.getBridgeGap()), 0),
+      realFlag("-concavity", "W",
+               "concave creases: the weight between touching supernodes is multiplied by "
+               "exp(-W c), c how concave their contact is, >= 0; 0 = off",
+               num(d.getConcavityWeight()), 0),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -339,6 +343,8 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setMaxSegments(static_cast<int>(flags.integer("-max_segments")));
   if (flags.has("-adjacent_share"))
     seg.setAdjacentShare(flags.real("-adjacent_share"));
+  if (flags.has("-concavity"))
+    seg.setConcavityWeight(flags.real("-concavity"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-min_fraction"))
@@ -353,6 +359,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setConnectAllAdjacent(false);
     seg.setLargestGapStopping(false);
     seg.setBridgeGap(0.0);
+    seg.setConcavityWeight(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;

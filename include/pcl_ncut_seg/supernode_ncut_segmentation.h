@@ -206,6 +206,15 @@ public:
   void setBridgeGap(double radii);
   double getBridgeGap() const { return bridge_gap_; }
 
+  /** \brief Concave creases: the weight of eq. (9) between two touching supernodes is
+   * multiplied by exp(-w c), c the mean concave bend of the surface across their contact
+   * relative to the model's mean bend per kNN edge (normals fitted to each point's kNN
+   * neighbourhood and oriented consistently), so that cuts follow concave creases, where
+   * people cut parts apart; >= 0, default 3, 0 = off (the paper). Switching between 0 and a positive
+   * value invalidates the expensive stage. */
+  void setConcavityWeight(double weight);
+  double getConcavityWeight() const { return similarity_.concavity_weight; }
+
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
    * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);

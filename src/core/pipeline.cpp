@@ -65,7 +65,7 @@ CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, cons
                                                   analysis.conn, analysis.face_angles, similarity,
                                                   analysis.face_angle)
                          : buildSupernodeGraph(analysis.supernodes, analysis.stats, analysis.conn,
-                                               similarity);
+                                               similarity, &analysis.concavity);
   r.hierarchy = buildHierarchy(r.graph, l, params);
   times.hierarchy = clock.lap();
 

@@ -58,7 +58,8 @@ constexpr double kMinWeight = 1e-200; // keeps every vertex's degree positive (D
 } // namespace
 
 WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stats,
-                                  const Connectivity& conn, const SimilarityParams& params) {
+                                  const Connectivity& conn, const SimilarityParams& params,
+                                  const Connectivity* concavity) {
   const auto l = static_cast<std::uint32_t>(sn.size());
   WeightedGraph g;
   g.num_vertices = 2 * l;
@@ -102,7 +103,11 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
     const double d2 = max_pair > 0.0 ? 1.0 - lookup(conn, i, j) / max_pair : 1.0;
     const double alpha_ij = std::max(
         params.alpha2 * std::min(width[i], width[j]) / std::max(width[i], width[j]), 1e-300);
-    return std::max(std::exp(-d1 / params.alpha1 - d2 / alpha_ij), kMinWeight);
+    // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
+    const double crease = params.concavity_weight > 0.0 && concavity
+                              ? params.concavity_weight * lookup(*concavity, i, j)
+                              : 0.0;
+    return std::max(std::exp(-d1 / params.alpha1 - d2 / alpha_ij - crease), kMinWeight);
   };
   std::vector<std::uint32_t> tree(l);
   std::iota(tree.begin(), tree.end(), 0u);

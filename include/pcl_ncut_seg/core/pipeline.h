@@ -60,6 +60,9 @@ struct Analysis {
   bool cad = false;          ///< CAD mode (Sec. 7): built by analyzeCad() in core/cad.h
   Connectivity face_angles;  ///< CAD mode: angle (degrees) between touching supernodes' faces
   double face_angle = 15.0;  ///< CAD mode: angle scale of the face similarity
+  /// Per pair of touching supernodes, how concave their contact is (core/concavity.h); empty
+  /// unless SimilarityParams::concavity_weight is used.
+  Connectivity concavity;
 };
 
 /** \brief Run Secs. 4.1-4.3 on a prepared kNN graph. Times go to times.centrality etc. */

@@ -52,6 +52,11 @@ struct SimilarityParams {
   /// contact to all other supernodes (0 = every touching pair). Patches of a flat region share
   /// long borders; limbs touch each other through a few feature-crossing edges.
   double adjacent_share = 0.45;
+  /// Concave creases: the weight of eq. (9) between two supernodes is multiplied by
+  /// exp(-concavity_weight * c_ij), c_ij the concavity of their contact (contactConcavity() in
+  /// core/concavity.h), so that cuts follow concave creases. 0 = the paper (no such factor).
+  /// Without a concavity map (buildSupernodeGraph's last argument) it has no effect.
+  double concavity_weight = 3.0;
 };
 
 /** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created
@@ -59,6 +64,7 @@ struct SimilarityParams {
  * most connected kNN-adjacent pair between member trees that no saddle joins, weighted by (9).
  */
 WeightedGraph buildSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
-                                  const Connectivity& conn, const SimilarityParams& params);
+                                  const Connectivity& conn, const SimilarityParams& params,
+                                  const Connectivity* concavity = nullptr);
 
 } // namespace pcl_ncut_seg

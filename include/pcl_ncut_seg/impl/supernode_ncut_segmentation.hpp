@@ -12,6 +12,7 @@
 #include <pcl/search/kdtree.h>
 
 #include <pcl_ncut_seg/core/bridging.h>
+#include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/morton.h>
 
 #include <algorithm>
@@ -312,6 +313,19 @@ void pcl::SupernodeNCutSegmentation<PointT>::setBridgeGap(double radii) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setConcavityWeight(double weight) {
+  if (!(weight >= 0.0) || !std::isfinite(weight)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setConcavityWeight] weight must be finite and "
+              ">= 0, got %g; keeping %g.\n",
+              weight, similarity_.concavity_weight);
+    return;
+  }
+  if ((weight > 0.0) != (similarity_.concavity_weight > 0.0))
+    invalidate(); // the contact concavity is measured in the expensive stage only when used
+  similarity_.concavity_weight = weight;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
   if (!(share >= 0.0 && share <= 1.0)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
@@ -526,7 +540,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   std::vector<std::uint32_t>().swap(knn); // free before the expensive stage
   if (bridge_gap_ > 0.0)
     pcl_ncut_seg::bridgeComponents(graph, xyz.data(), bridge_gap_);
-  if (!cad_mode_) // CAD mode fits planes to the coordinates later
+  if (!cad_mode_ && !(similarity_.concavity_weight > 0.0)) // still needed by these
     std::vector<float>().swap(xyz);
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -569,6 +583,10 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   } else {
     analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
         pcl_ncut_seg::analyze(std::move(graph), params, times_));
+    if (similarity_.concavity_weight > 0.0)
+      analysis_->concavity = pcl_ncut_seg::contactConcavity(
+          analysis_->graph, xyz.data(), pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data()),
+          analysis_->supernodes.label);
   }
   point_index_ = std::move(valid);
   return true;

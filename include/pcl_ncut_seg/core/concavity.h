@@ -1,0 +1,35 @@
+/*
+ * pcl_ncut_seg: concave creases between supernodes, so that boundaries follow them (people
+ * cut shapes along concave creases: the minima rule). An extension of Sec. 5.1; see README.
+ */
+#pragma once
+
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/supernode_graph.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+/** \brief Unit normals fitted (least squares plane) to each point and its graph neighbours,
+ * oriented consistently by propagation along a minimum spanning tree of the kNN graph
+ * (weights 1 - |n_p . n_q|, Hoppe et al. 1992), in each component starting from the point
+ * farthest from the component's centroid, whose normal points away from the centroid. A point
+ * without a plane (fewer than 3 neighbours, collinear) gets a zero normal.
+ * \param[in] xyz  3 floats per vertex */
+std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz);
+
+/** \brief Per pair of touching supernodes (keyed (min, max), i != j), how concave their
+ * contact is: the mean over the kNN edges (p, q) between them of the concave bend
+ * max(0, -(n_p - n_q) . (p - q) / |p - q|) (about the angle between the normals where the
+ * surface folds inwards, 0 where it folds outwards), divided by the mean bend |(n_p - n_q) .
+ * (p - q)| / |p - q| over every edge of the graph, so that it does not depend on the sampling
+ * density or the model's size.
+ * \param[in] normals  3 floats per vertex, from orientedNormals()
+ * \param[in] label    per vertex, its supernode */
+Connectivity contactConcavity(const CsrGraph& graph, const float* xyz,
+                              const std::vector<float>& normals,
+                              const std::vector<std::uint32_t>& label);
+
+} // namespace pcl_ncut_seg

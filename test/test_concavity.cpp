@@ -1,0 +1,140 @@
+/*
+ * Concave creases between supernodes (core/concavity.h,
+ * SupernodeNCutSegmentation::setConcavityWeight).
+ */
+#include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/shapes.h"
+
+#include <pcl/kdtree/kdtree_flann.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <map>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+struct Cloud {
+  std::vector<float> xyz;
+  CsrGraph graph;
+};
+
+/// The points of a shape and their symmetric 10-NN graph.
+Cloud knnOf(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud) {
+  Cloud c;
+  const std::size_t n = cloud->size(), k = 10;
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(cloud);
+  std::vector<std::uint32_t> knn(n * k);
+  pcl::Indices idx;
+  std::vector<float> d2;
+  for (std::size_t p = 0; p < n; ++p) {
+    tree.nearestKSearch((*cloud)[p], static_cast<int>(k + 1), idx, d2);
+    std::size_t j = 0;
+    for (const auto q : idx)
+      if (static_cast<std::size_t>(q) != p && j < k)
+        knn[p * k + j++] = static_cast<std::uint32_t>(q);
+    c.xyz.push_back((*cloud)[p].x);
+    c.xyz.push_back((*cloud)[p].y);
+    c.xyz.push_back((*cloud)[p].z);
+  }
+  c.graph = buildSymmetricKnnGraph(c.xyz.data(), n, knn.data(), k);
+  return c;
+}
+
+} // namespace
+
+TEST(Concavity, NormalsOfAClosedSurfacePointOutwards) {
+  const test::LabeledShape shape = test::makeDumbbell(3000, 1);
+  const Cloud c = knnOf(shape.cloud);
+  const std::vector<float> normals = orientedNormals(c.graph, c.xyz.data());
+  // On the balls (centres at x = -1.2 and 1.2, radius 0.5), away from the bar, the outward
+  // normal is the direction from the centre.
+  std::size_t checked = 0, outwards = 0;
+  for (std::size_t p = 0; p < shape.cloud->size(); ++p) {
+    const double x = c.xyz[3 * p], y = c.xyz[3 * p + 1], z = c.xyz[3 * p + 2];
+    const double cx = x < 0 ? -1.2 : 1.2;
+    if (std::abs(x) < 1.2)
+      continue; // the outer halves of the balls only
+    ++checked;
+    const double along =
+        normals[3 * p] * (x - cx) + normals[3 * p + 1] * y + normals[3 * p + 2] * z;
+    outwards += along > 0.4; // |x - c| = 0.5: cos < 0.8 would be a bad fit
+  }
+  ASSERT_GT(checked, 500u);
+  EXPECT_EQ(outwards, checked);
+}
+
+TEST(Concavity, ABarMeetsItsBallsAtAConcaveCrease) {
+  const test::LabeledShape shape = test::makeDumbbell(4000, 1);
+  const Cloud c = knnOf(shape.cloud);
+  const std::vector<float> normals = orientedNormals(c.graph, c.xyz.data());
+  // Parts as supernodes: ball 0, bar 1, ball 2; and the balls split at their equator plane
+  // x = +-1.2 into halves 3 and 4 (a convex contact on a smooth surface, for reference).
+  std::vector<std::uint32_t> label(shape.labels.size());
+  for (std::size_t p = 0; p < label.size(); ++p) {
+    label[p] = static_cast<std::uint32_t>(shape.labels[p]);
+    if (shape.labels[p] != 1 && std::abs(c.xyz[3 * p]) > 1.2)
+      label[p] = shape.labels[p] == 0 ? 3u : 4u;
+  }
+  const Connectivity concave = contactConcavity(c.graph, c.xyz.data(), normals, label);
+  ASSERT_TRUE(concave.count({0, 1}) && concave.count({1, 2}));
+  ASSERT_TRUE(concave.count({0, 3}) && concave.count({2, 4}));
+  std::cout << "contact concavity: ball-bar " << concave.at({0, 1}) << ", " << concave.at({1, 2})
+            << "; half-half " << concave.at({0, 3}) << ", " << concave.at({2, 4}) << "\n";
+  // The bar's contact with a ball bends inwards several times more than a typical edge bends;
+  // the halves of a ball meet where the surface bends outwards only.
+  EXPECT_GT(concave.at({0, 1}), 1.5);
+  EXPECT_GT(concave.at({1, 2}), 1.5);
+  EXPECT_LT(concave.at({0, 3}), 0.25);
+  EXPECT_LT(concave.at({2, 4}), 0.25);
+}
+
+TEST(ConcavityWeight, ConcaveContactsGetWeakerEdges) {
+  const test::LabeledShape shape = test::makeQuadruped(4000, 1);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_EQ(seg.getConcavityWeight(), 3.0);
+  seg.setInputCloud(shape.cloud);
+  std::vector<pcl::PointIndices> segments;
+  auto memberWeights = [&](double w) {
+    seg.setConcavityWeight(w);
+    seg.extract(segments);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, double> out;
+    const std::size_t l = seg.getNumberOfSupernodes(true);
+    for (const auto& e : seg.getSupernodeGraph().edges)
+      if (e.a >= l && e.b >= l)
+        out[{e.a, e.b}] = e.w;
+    return out;
+  };
+  const auto off = memberWeights(0.0);
+  EXPECT_TRUE(seg.getAnalysis()->concavity.empty());
+  const auto on = memberWeights(3.0);
+  EXPECT_FALSE(seg.getAnalysis()->concavity.empty());
+  ASSERT_EQ(on.size(), off.size());
+  std::size_t weaker = 0;
+  for (const auto& [key, w] : on) {
+    ASSERT_TRUE(off.count(key));
+    EXPECT_LE(w, off.at(key) * (1 + 1e-12));
+    weaker += w < 0.9 * off.at(key);
+  }
+  EXPECT_GT(weaker, 0u); // legs, neck and tail meet the body at concave creases
+}
+
+TEST(ConcavityWeight, SetterRejectsBadValues) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setConcavityWeight(1.5);
+  for (double bad : {-1e-30, -1.0, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
+    seg.setConcavityWeight(bad);
+    EXPECT_EQ(seg.getConcavityWeight(), 1.5);
+  }
+  seg.setConcavityWeight(0.0);
+  EXPECT_EQ(seg.getConcavityWeight(), 0.0);
+}
