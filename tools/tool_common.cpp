@@ -280,7 +280,8 @@ std::vector<Flag> algorithmFlags() {
               "computed exactly)",
               num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
-                           "of supernodes that meet at no saddle, recursive bisection while "
+                           "of supernodes that meet at no saddle, no bridging of kNN-graph "
+                           "components, no concavity term, recursive bisection while "
                            "NCut <= T instead of the largest-gap rule, exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
