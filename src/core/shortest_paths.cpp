@@ -85,6 +85,7 @@ void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bou
   // How far ahead in the bucket to fetch rows (and, twice as far, their offsets): about the
   // number of memory accesses in flight that hide the latency of the processor's last cache.
   constexpr std::size_t kAhead = 16;
+  constexpr std::uint32_t kChunk = 32; // edges relaxed before their targets are queued
   dist[source] = 0.0f;
   if (kRecord)
     touched->push_back(source);
@@ -113,16 +114,30 @@ void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bou
       clearPending(v);
       if (kBounded && dv >= bound[v])
         continue;
+      // Relax the row without a branch per edge (whether an edge improves its target is
+      // unpredictable), noting the improved targets; then queue those.
+      std::uint32_t e = offsets[v];
       const std::uint32_t end = offsets[v + 1];
-      for (std::uint32_t e = offsets[v]; e < end; ++e) {
-        const std::uint32_t t = targets[e];
-        const float nd = dv + lengths[e];
-        const float dt = dist[t];
-        if (nd < dt) {
+      while (e < end) {
+        std::uint32_t improved[kChunk];
+        float before[kChunk];
+        std::size_t count = 0;
+        for (const std::uint32_t stop = std::min(end, e + kChunk); e < stop; ++e) {
+          const std::uint32_t t = targets[e];
+          const float nd = dv + lengths[e];
+          const float dt = dist[t];
+          const bool better = nd < dt;
+          dist[t] = better ? nd : dt;
+          improved[count] = t;
+          before[count] = dt;
+          count += better;
+        }
+        for (std::size_t j = 0; j < count; ++j) {
+          const std::uint32_t t = improved[j];
+          const float dt = before[j];
           if (kRecord && dt == kInf)
             touched->push_back(t);
-          dist[t] = nd;
-          const std::uint32_t b = bucketOf(nd);
+          const std::uint32_t b = bucketOf(dist[t]);
           // A pending vertex has a finite distance; if it waits in b it is scanned from there.
           if (isPending(t) && bucketOf(dt) == b)
             continue;
