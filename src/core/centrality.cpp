@@ -104,10 +104,9 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
   std::vector<std::size_t> count(out.num_components), first_task(out.num_components + 1, 0);
   for (std::uint32_t c = 0; c < out.num_components; ++c) {
     const std::size_t size = begin[c + 1] - begin[c];
-    count[c] = std::min(
-        size, num_samples > 0
-                  ? num_samples
-                  : static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(size)))));
+    count[c] = std::min(size, num_samples > 0 ? num_samples
+                                              : static_cast<std::size_t>(std::ceil(
+                                                    std::sqrt(static_cast<double>(size)))));
     first_task[c + 1] = first_task[c] + count[c];
   }
   const std::size_t num_tasks = first_task[out.num_components];
