@@ -22,7 +22,7 @@ namespace pcl_ncut_seg {
  * The front's rows lie all over the graph's arrays, so a search waits mostly on memory: it
  * fetches the rows of the vertices a few places ahead in the bucket before it needs them, and
  * keeps one pending bit per vertex, so that the distances and bits stay in the processor's
- * cache.
+ * cache. It relaxes a row without a branch per edge, then queues the improved targets.
  *
  * One object per thread: it holds the queue. The graph must outlive it.
  */
