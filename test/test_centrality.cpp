@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 using namespace pcl_ncut_seg;
 
 namespace {
@@ -77,6 +80,32 @@ TEST(Centrality, IdenticalForAnyNumberOfThreads) {
   EXPECT_EQ(one.f, two.f);
   EXPECT_EQ(one.f, three.f);
   EXPECT_EQ(one.samples, two.samples);
+}
+
+TEST(Centrality, IdenticalForAnyNumberOfThreadsOnSeveralComponents) {
+  // Three far-apart clouds with their points interleaved: the searches of one component start
+  // while the samples of the next are still being chosen.
+  const std::size_t per = 400, k = 8;
+  std::vector<float> xyz;
+  for (unsigned c = 0; c < 3; ++c) {
+    const auto part = test::randomPoints(per, 20 + c);
+    for (std::size_t i = 0; i < part.size(); ++i)
+      xyz.push_back(part[i] + (i % 3 == 0 ? 10.0f * static_cast<float>(c) : 0.0f));
+  }
+  std::vector<float> mixed(xyz.size());
+  for (std::size_t i = 0; i < 3 * per; ++i) { // point i of the result: point (i % 3, i / 3)
+    const std::size_t from = (i % 3) * per + i / 3;
+    std::copy_n(&xyz[3 * from], 3, &mixed[3 * i]);
+  }
+  const auto knn = test::bruteForceKnn(mixed, k);
+  const CsrGraph g = buildSymmetricKnnGraph(mixed.data(), 3 * per, knn.data(), k);
+  const Centrality one = computeCentrality(g, 0, 1);
+  ASSERT_EQ(one.num_components, 3u);
+  for (unsigned threads : {2u, 3u, 8u}) {
+    const Centrality many = computeCentrality(g, 0, threads);
+    EXPECT_EQ(one.f, many.f) << threads << " threads";
+    EXPECT_EQ(one.samples, many.samples) << threads << " threads";
+  }
 }
 
 TEST(Centrality, EachComponentIsItsOwnSurface) {

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -90,14 +91,6 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
     permuted = permuteGraph(graph, order);
   const CsrGraph& g = contiguous ? graph : permuted;
 
-  std::vector<float> h(n, kInf), dist(n, kInf);
-  std::vector<std::uint32_t> touched;
-  BucketDijkstra search(g);
-  // Per component: its samples and a fixed-point quantum that bounds every distance in it.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> tasks; // (sample position, component)
-  std::vector<double> quantum(out.num_components, 1.0);
-  std::vector<std::size_t> count(out.num_components, 0);
-
   // Ties go to the smallest rank (the caller's, or the vertex index).
   auto rank = [tie_rank](std::uint32_t v) { return tie_rank ? tie_rank[v] : v; };
   std::vector<std::uint32_t> smallest(out.num_components, kNone); // per component
@@ -106,60 +99,79 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
     if (m == kNone || rank(v) < rank(m))
       m = v;
   }
+  // Samples per component, known before any search, so that the full searches (steps 5a-b)
+  // can start while later samples are still being chosen.
+  std::vector<std::size_t> count(out.num_components), first_task(out.num_components + 1, 0);
   for (std::uint32_t c = 0; c < out.num_components; ++c) {
-    const std::uint32_t first_vertex = smallest[c];
     const std::size_t size = begin[c + 1] - begin[c];
-    const std::size_t want = std::min(
-        size, num_samples > 0
-                  ? num_samples
-                  : static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(size)))));
-    // The largest value of x over the component's positions, ties to the smallest rank.
-    auto argmax = [&](const std::vector<float>& x, float& best) {
-      std::uint32_t arg = kNone;
-      for (std::uint32_t p = begin[c]; p < begin[c + 1]; ++p)
-        if (x[p] > best || (x[p] == best && arg != kNone && rank(order[p]) < rank(arg))) {
-          best = x[p];
-          arg = order[p];
-        }
-      return arg;
-    };
-    // First sample: farthest from the component's smallest-rank vertex (a deterministic choice for
-    // the arbitrary tie of step 4 when h is infinite everywhere).
-    touched.clear();
-    search.run(pos[first_vertex], dist.data(), nullptr, &touched);
-    float ecc = 0.0f;
-    std::uint32_t first = argmax(dist, ecc);
-    if (first == kNone) // a single vertex, or every distance 0
-      first = first_vertex;
-    for (std::uint32_t p : touched)
-      dist[p] = kInf;
-    // Any geodesic distance in the component is at most 2 * ecc (triangle inequality).
-    if (ecc > 0.0f)
-      quantum[c] = 2.0 * ecc / static_cast<double>(std::int64_t(1) << 40);
-
-    std::uint32_t s = first;
-    for (std::size_t i = 0; i < want; ++i) {
-      if (i > 0) { // step 4: the vertex with the largest h, ties to the smallest index
-        float best = -1.0f;
-        s = argmax(h, best);
-      }
-      tasks.emplace_back(pos[s], c);
-      // Step 5c: h <- min(h, g(s, .)), searching only where h can still drop.
-      touched.clear();
-      search.run(pos[s], dist.data(), h.data(), &touched);
-      for (std::uint32_t p : touched) {
-        h[p] = std::min(h[p], dist[p]);
-        dist[p] = kInf;
-      }
-      h[pos[s]] = 0.0f;
-    }
-    count[c] = want;
+    count[c] = std::min(size, num_samples > 0 ? num_samples
+                                              : static_cast<std::size_t>(std::ceil(
+                                                    std::sqrt(static_cast<double>(size)))));
+    first_task[c + 1] = first_task[c] + count[c];
   }
-  h = std::vector<float>();
-  dist = std::vector<float>();
+  const std::size_t num_tasks = first_task[out.num_components];
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tasks(num_tasks); // (position, component)
+  // Per component, a fixed-point quantum that bounds every distance in it.
+  std::vector<double> quantum(out.num_components, 1.0);
+  std::atomic<std::size_t> published{0}; // tasks[0, published) are chosen
+
+  // Steps 4-5c: farthest-point samples, each published as soon as it is chosen.
+  auto chooseSamples = [&]() {
+    std::vector<float> h(n, kInf), dist(n, kInf);
+    std::vector<std::uint32_t> touched;
+    BucketDijkstra search(g);
+    for (std::uint32_t c = 0; c < out.num_components; ++c) {
+      const std::uint32_t first_vertex = smallest[c];
+      // The largest value of x over the component's positions, ties to the smallest rank.
+      auto argmax = [&](const std::vector<float>& x, float& best) {
+        std::uint32_t arg = kNone;
+        for (std::uint32_t p = begin[c]; p < begin[c + 1]; ++p)
+          if (x[p] > best || (x[p] == best && arg != kNone && rank(order[p]) < rank(arg))) {
+            best = x[p];
+            arg = order[p];
+          }
+        return arg;
+      };
+      // First sample: farthest from the component's smallest-rank vertex (a deterministic
+      // choice for the arbitrary tie of step 4 when h is infinite everywhere).
+      touched.clear();
+      search.run(pos[first_vertex], dist.data(), nullptr, &touched);
+      float ecc = 0.0f;
+      std::uint32_t first = argmax(dist, ecc);
+      if (first == kNone) // a single vertex, or every distance 0
+        first = first_vertex;
+      for (std::uint32_t p : touched)
+        dist[p] = kInf;
+      // Any geodesic distance in the component is at most 2 * ecc (triangle inequality).
+      if (ecc > 0.0f)
+        quantum[c] = 2.0 * ecc / static_cast<double>(std::int64_t(1) << 40);
+
+      std::uint32_t s = first;
+      for (std::size_t i = 0; i < count[c]; ++i) {
+        if (i > 0) { // step 4: the vertex with the largest h, ties to the smallest index
+          float best = -1.0f;
+          s = argmax(h, best);
+        }
+        tasks[first_task[c] + i] = {pos[s], c};
+        published.store(first_task[c] + i + 1, std::memory_order_release);
+        if (i + 1 == count[c])
+          break; // h is needed only to choose the next sample
+        // Step 5c: h <- min(h, g(s, .)), searching only where h can still drop.
+        touched.clear();
+        search.run(pos[s], dist.data(), h.data(), &touched);
+        for (std::uint32_t p : touched) {
+          h[p] = std::min(h[p], dist[p]);
+          dist[p] = kInf;
+        }
+        h[pos[s]] = 0.0f;
+      }
+      // The next component's searches do not reach this one: its h can stay as it is.
+    }
+  };
 
   // Steps 5a-b: full searches from every sample, summed in fixed point so that the sum does
-  // not depend on the order, hence not on the number of threads.
+  // not depend on the order, hence not on the number of threads. The calling thread chooses
+  // the samples first; the others search from those already chosen meanwhile.
   int threads = 1;
 #ifdef _OPENMP
   // More threads than processors would only cost memory (one distance array each).
@@ -169,21 +181,24 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
 #else
   (void)num_threads;
 #endif
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(tasks.size())));
+  threads = std::max(1, std::min<int>(threads, static_cast<int>(num_tasks)));
   std::vector<std::vector<std::int64_t>> partial(threads);
-  std::atomic<std::size_t> done{0};
+  std::atomic<std::size_t> next{0}, done{0};
 #pragma omp parallel num_threads(threads)
   {
     int t = 0;
 #ifdef _OPENMP
     t = omp_get_thread_num();
 #endif
+    if (t == 0)
+      chooseSamples();
     std::vector<std::int64_t>& acc = partial[t];
     acc.assign(n, 0);
     std::vector<float> d(n, kInf);
     BucketDijkstra full(g);
-#pragma omp for schedule(dynamic, 1)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(tasks.size()); ++i) {
+    for (std::size_t i = next++; i < num_tasks; i = next++) {
+      while (published.load(std::memory_order_acquire) <= i)
+        std::this_thread::yield(); // the calling thread is still choosing sample i
       const auto [sample, c] = tasks[i];
       full.run(sample, d.data());
       const double inv = 1.0 / quantum[c];
@@ -193,7 +208,7 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
       }
       const std::size_t finished = ++done;
       if (t == 0 && progress) // the calling thread reports
-        progress(static_cast<double>(finished) / static_cast<double>(tasks.size()));
+        progress(static_cast<double>(finished) / static_cast<double>(num_tasks));
     }
   }
   if (progress)

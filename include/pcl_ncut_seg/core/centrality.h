@@ -33,7 +33,8 @@ using ProgressFn = std::function<void(double)>;
  * the vertex farthest from its smallest-index vertex (ties: smallest index; see tie_rank), so
  * the choice is deterministic. Searches use Dial's bucket queue (BucketDijkstra, the same
  * distances as geodesicDistances()); sampling uses bounded searches; the full searches run in
- * parallel and are summed in fixed point, so f is bit-identical for any number of threads.
+ * parallel, starting while the calling thread still chooses later samples, and are summed in
+ * fixed point, so f is bit-identical for any number of threads.
  *
  * \param[in] graph        the kNN graph
  * \param[in] num_samples  samples per component; 0 = ceil(sqrt(n_c))

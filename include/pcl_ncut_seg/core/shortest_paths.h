@@ -19,6 +19,11 @@ namespace pcl_ncut_seg {
  * mean edge length, so a bucket holds a thin front of vertices and a search costs O(|E| + D / w)
  * for a graph of geodesic diameter D, with no heap.
  *
+ * The front's rows lie all over the graph's arrays, so a search waits mostly on memory: it
+ * fetches the rows of the vertices a few places ahead in the bucket before it needs them, and
+ * keeps one pending bit per vertex, so that the distances and bits stay in the processor's
+ * cache. It relaxes a row without a branch per edge, then queues the improved targets.
+ *
  * One object per thread: it holds the queue. The graph must outlive it.
  */
 class BucketDijkstra {
@@ -42,7 +47,8 @@ private:
   double inv_width_ = 1.0;
   std::size_t mask_ = 0;
   std::vector<std::vector<std::uint32_t>> buckets_;
-  std::vector<std::uint32_t> queued_; ///< per vertex, the bucket of its pending entry
+  /// Bit v: v waits in the bucket of dist[v] (an entry there is not yet scanned).
+  std::vector<std::uint64_t> pending_;
 };
 
 /** \brief The graph with vertex order[i] renumbered as i. Rows keep their edges in the input's
