@@ -76,6 +76,9 @@ void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bou
   const std::uint32_t* offsets = graph_.offsets.data();
   const std::uint32_t* targets = graph_.targets.data();
   const float* lengths = graph_.lengths.data();
+  // The second cache line of a row is fetched at most up to the last edge (no address past it).
+  const std::uint32_t last_edge =
+      graph_.targets.empty() ? 0u : static_cast<std::uint32_t>(graph_.targets.size() - 1);
   std::uint64_t* pending = pending_.data();
   auto isPending = [pending](std::uint32_t v) { return (pending[v >> 6] >> (v & 63)) & 1u; };
   auto setPending = [pending](std::uint32_t v) { pending[v >> 6] |= std::uint64_t(1) << (v & 63); };
@@ -100,10 +103,11 @@ void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bou
         prefetch(offsets + bucket[i + 2 * kAhead]);
       if (i + kAhead < bucket.size()) {
         const std::uint32_t row = offsets[bucket[i + kAhead]]; // rows average 11 edges
+        const std::uint32_t row_tail = std::min(row + 15, last_edge);
         prefetch(targets + row);
-        prefetch(targets + row + 15);
+        prefetch(targets + row_tail);
         prefetch(lengths + row);
-        prefetch(lengths + row + 15);
+        prefetch(lengths + row_tail);
       }
       const std::uint32_t v = bucket[i];
       --queued;
