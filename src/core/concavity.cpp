@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <map>
 
 namespace pcl_ncut_seg {
@@ -76,46 +75,55 @@ int threadsFor(unsigned requested) {
 #endif
 }
 
-/// Monotone-key bucket queue for Prim's tree: the cost 1 - |n_p . n_q| in [0, 1] goes to bucket
-/// (float bits >> 19), i.e. on a log scale with 16 buckets per octave (6% apart), so small
-/// angles stay apart as well as large ones. A bitmap finds the lowest non-empty bucket.
+/// Bucket queue for Prim's tree: the cost 1 - |n_p . n_q| in [0, 1], rounded down to a multiple
+/// of 1/1024, is the bucket. Finer costs make no difference to the orientation (two normals
+/// under 2.5 degrees apart agree either way), and each bucket is first in, first out, so the
+/// tree grows through smooth regions as a compact front that holds few queued vertices. A
+/// bitmap finds the lowest non-empty bucket.
 class BucketQueue {
 public:
-  static constexpr int kShift = 19;
-  static constexpr std::size_t kBuckets = (0x3F800000u >> kShift) + 1; // cost 1.0f is the last
+  static constexpr std::size_t kBuckets = 1025; // cost 1 is the last
 
   static std::uint16_t key(float cost) {
-    cost = std::min(std::max(cost, 0.0f), 1.0f);
-    std::uint32_t bits;
-    std::memcpy(&bits, &cost, sizeof bits);
-    return static_cast<std::uint16_t>(bits >> kShift);
+    return static_cast<std::uint16_t>(std::min(std::max(cost, 0.0f), 1.0f) * 1024.0f);
   }
   bool empty() const { return nonempty_ == 0; }
   void push(std::uint16_t key, std::uint32_t v) {
-    buckets_[key].push_back(v);
+    buckets_[key].items.push_back(v);
     if (!(bits_[key >> 6] & (1ull << (key & 63)))) {
       bits_[key >> 6] |= 1ull << (key & 63);
       ++nonempty_;
     }
   }
-  /// Removes a vertex from the lowest bucket (the latest pushed there); returns its key.
+  /// Removes a vertex from the lowest bucket (the earliest pushed there); returns its key.
   std::uint16_t pop(std::uint32_t& v) {
     std::size_t w = 0;
     while (bits_[w] == 0)
       ++w;
-    const auto key = static_cast<std::uint16_t>(64 * w + static_cast<std::size_t>(__builtin_ctzll(bits_[w])));
-    std::vector<std::uint32_t>& bucket = buckets_[key];
-    v = bucket.back();
-    bucket.pop_back();
-    if (bucket.empty()) {
+    const auto key =
+        static_cast<std::uint16_t>(64 * w + static_cast<std::size_t>(__builtin_ctzll(bits_[w])));
+    Fifo& bucket = buckets_[key];
+    v = bucket.items[bucket.head++];
+    if (bucket.head == bucket.items.size()) {
+      bucket.items.clear();
+      bucket.head = 0;
       bits_[w] &= ~(1ull << (key & 63));
       --nonempty_;
+    } else if (bucket.head >= 1024 && 2 * bucket.head >= bucket.items.size()) {
+      // Drop the taken half: the storage stays proportional to what is queued.
+      bucket.items.erase(bucket.items.begin(),
+                         bucket.items.begin() + static_cast<std::ptrdiff_t>(bucket.head));
+      bucket.head = 0;
     }
     return key;
   }
 
 private:
-  std::array<std::vector<std::uint32_t>, kBuckets> buckets_;
+  struct Fifo {
+    std::vector<std::uint32_t> items; ///< queued from head on
+    std::size_t head = 0;
+  };
+  std::array<Fifo, kBuckets> buckets_;
   std::array<std::uint64_t, (kBuckets + 63) / 64> bits_{};
   std::size_t nonempty_ = 0;
 };
