@@ -85,8 +85,9 @@ void mortonSort(std::vector<float>& xyz) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "Usage: %s MODEL.off N [--threads T] [--repeat R] [--dump F] "
-                         "[--compare F]\n",
+    std::fprintf(stderr,
+                 "Usage: %s MODEL.off N [--threads T] [--repeat R] [--dump F] "
+                 "[--compare F]\n",
                  argv[0]);
     return 2;
   }
@@ -214,11 +215,13 @@ int main(int argc, char** argv) {
       max_diff = std::max(max_diff, std::abs(v - it->second));
       sum_diff += std::abs(v - it->second);
     }
-    std::printf("compare: normals in both %zu, same orientation %.4f%%, |cos| < 0.999: %zu; "
-                "contacts %zu vs %zu (missing %zu), concavity mean |diff| %.4g, max %.4g\n",
-                both, 100.0 * static_cast<double>(same) / static_cast<double>(std::max<std::size_t>(both, 1)),
-                bad_fit, concavity.size(), other_c.size(), missing,
-                sum_diff / static_cast<double>(std::max<std::size_t>(concavity.size(), 1)), max_diff);
+    std::printf(
+        "compare: normals in both %zu, same orientation %.4f%%, |cos| < 0.999: %zu; "
+        "contacts %zu vs %zu (missing %zu), concavity mean |diff| %.4g, max %.4g\n",
+        both,
+        100.0 * static_cast<double>(same) / static_cast<double>(std::max<std::size_t>(both, 1)),
+        bad_fit, concavity.size(), other_c.size(), missing,
+        sum_diff / static_cast<double>(std::max<std::size_t>(concavity.size(), 1)), max_diff);
   }
   return 0;
 }
