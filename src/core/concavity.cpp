@@ -139,53 +139,33 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
   for (std::int64_t p = 0; p < sn; ++p)
     fitPlane(graph, xyz, static_cast<std::size_t>(p), &normals[3 * p]);
 
-  // Orientation: Prim's tree over 1 - |n_p . n_q| from a seed per component.
+  // Orientation: Prim's tree over 1 - |n_p . n_q|, grown over each component from its first
+  // vertex. The tree does not depend on where it starts (up to ties), so the component is then
+  // turned as a whole so that the seed's normal points away from the centroid.
   auto dot = [&](std::size_t a, std::size_t b) {
     return normals[3 * a] * normals[3 * b] + normals[3 * a + 1] * normals[3 * b + 1] +
            normals[3 * a + 2] * normals[3 * b + 2];
   };
-  std::vector<std::uint32_t> comp;
-  const std::size_t num_comps = connectedComponents(graph, comp);
-  std::vector<Eigen::Vector3d> centroid(num_comps, Eigen::Vector3d::Zero());
-  std::vector<std::size_t> size(num_comps, 0);
-  for (std::size_t v = 0; v < n; ++v) {
-    centroid[comp[v]] += Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    ++size[comp[v]];
-  }
-  for (std::size_t c = 0; c < num_comps; ++c)
-    centroid[c] /= static_cast<double>(size[c]);
-  std::vector<std::int64_t> seed(num_comps, -1);
-  std::vector<double> far(num_comps, -1.0);
-  for (std::size_t v = 0; v < n; ++v) {
-    const Eigen::Vector3d d =
-        Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - centroid[comp[v]];
-    const bool has_normal =
-        normals[3 * v] != 0.0f || normals[3 * v + 1] != 0.0f || normals[3 * v + 2] != 0.0f;
-    if (has_normal && d.norm() > far[comp[v]]) {
-      far[comp[v]] = d.norm();
-      seed[comp[v]] = static_cast<std::int64_t>(v);
-    }
-  }
-  // Prim's tree with a decrease-key bucket queue: key[v] is v's best bucket so far (kUnseen,
-  // kDone), parent[v] the tree vertex it came from (the component ids are no longer needed).
-  std::vector<std::uint32_t>& parent = comp;
+  auto point = [&](std::size_t v) {
+    return Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
+  };
+  // key[v]: v's best bucket so far (or kUnseen, kDone). parent[v]: while v is queued, the tree
+  // vertex it came from; once v is done, its component.
   constexpr std::uint16_t kUnseen = 0xFFFF, kDone = 0xFFFE;
   std::vector<std::uint16_t> key(n, kUnseen);
+  std::vector<std::uint32_t> parent(n);
+  std::vector<Eigen::Vector3d> centroid;
+  std::vector<std::size_t> size;
   BucketQueue queue;
-  for (std::size_t c = 0; c < num_comps; ++c) {
-    if (seed[c] < 0)
+  for (std::size_t root = 0; root < n; ++root) {
+    if (key[root] != kUnseen)
       continue;
-    const auto s = static_cast<std::uint32_t>(seed[c]);
-    const Eigen::Vector3d out =
-        Eigen::Vector3d(xyz[3 * s], xyz[3 * s + 1], xyz[3 * s + 2]) - centroid[c];
-    const double along =
-        normals[3 * s] * out[0] + normals[3 * s + 1] * out[1] + normals[3 * s + 2] * out[2];
-    if (along < 0.0)
-      for (int d = 0; d < 3; ++d)
-        normals[3 * s + d] = -normals[3 * s + d];
-    parent[s] = s;
-    key[s] = 0;
-    queue.push(0, s);
+    const auto c = static_cast<std::uint32_t>(centroid.size());
+    centroid.emplace_back(Eigen::Vector3d::Zero());
+    size.push_back(0);
+    parent[root] = static_cast<std::uint32_t>(root);
+    key[root] = 0;
+    queue.push(0, static_cast<std::uint32_t>(root));
     while (!queue.empty()) {
       std::uint32_t v;
       const std::uint16_t k = queue.pop(v);
@@ -195,6 +175,9 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
       if (v != parent[v] && dot(v, parent[v]) < 0.0f)
         for (int d = 0; d < 3; ++d)
           normals[3 * v + d] = -normals[3 * v + d];
+      parent[v] = c;
+      centroid[c] += point(v);
+      ++size[c];
       for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
         const std::uint32_t w = graph.targets[e];
         if (key[w] == kDone)
@@ -208,6 +191,35 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
       }
     }
   }
+  std::vector<std::uint16_t>().swap(key);
+  const std::size_t num_comps = centroid.size();
+  for (std::size_t c = 0; c < num_comps; ++c)
+    centroid[c] /= static_cast<double>(size[c]);
+  // The seed: the point with a normal farthest from its component's centroid.
+  std::vector<std::int64_t> seed(num_comps, -1);
+  std::vector<double> far(num_comps, -1.0);
+  for (std::size_t v = 0; v < n; ++v) {
+    const std::uint32_t c = parent[v];
+    const double d = (point(v) - centroid[c]).norm();
+    const bool has_normal =
+        normals[3 * v] != 0.0f || normals[3 * v + 1] != 0.0f || normals[3 * v + 2] != 0.0f;
+    if (has_normal && d > far[c]) {
+      far[c] = d;
+      seed[c] = static_cast<std::int64_t>(v);
+    }
+  }
+  std::vector<char> turn(num_comps, 0);
+  for (std::size_t c = 0; c < num_comps; ++c)
+    if (seed[c] >= 0) {
+      const auto s = static_cast<std::size_t>(seed[c]);
+      const Eigen::Vector3d out = point(s) - centroid[c];
+      turn[c] =
+          normals[3 * s] * out[0] + normals[3 * s + 1] * out[1] + normals[3 * s + 2] * out[2] < 0.0;
+    }
+  for (std::size_t v = 0; v < n; ++v)
+    if (turn[parent[v]])
+      for (int d = 0; d < 3; ++d)
+        normals[3 * v + d] = -normals[3 * v + d];
   return normals;
 }
 
