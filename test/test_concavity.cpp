@@ -72,6 +72,19 @@ TEST(Concavity, NormalsOfAClosedSurfacePointOutwards) {
   EXPECT_EQ(outwards, checked);
 }
 
+TEST(Concavity, NormalsDoNotDependOnTheNumberOfThreads) {
+  const test::LabeledShape shape = test::makeQuadruped(6000, 1);
+  const Cloud c = knnOf(shape.cloud);
+  const std::vector<float> one = orientedNormals(c.graph, c.xyz.data(), 1);
+  const std::vector<float> two = orientedNormals(c.graph, c.xyz.data(), 2);
+  ASSERT_EQ(one.size(), 3 * shape.cloud->size());
+  EXPECT_EQ(one, two); // bit for bit
+  std::size_t fitted = 0;
+  for (std::size_t p = 0; p < shape.cloud->size(); ++p)
+    fitted += one[3 * p] != 0.0f || one[3 * p + 1] != 0.0f || one[3 * p + 2] != 0.0f;
+  EXPECT_EQ(fitted, shape.cloud->size()); // a surface: every point has a plane
+}
+
 TEST(Concavity, ABarMeetsItsBallsAtAConcaveCrease) {
   const test::LabeledShape shape = test::makeDumbbell(4000, 1);
   const Cloud c = knnOf(shape.cloud);

@@ -14,11 +14,15 @@ namespace pcl_ncut_seg {
 
 /** \brief Unit normals fitted (least squares plane) to each point and its graph neighbours,
  * oriented consistently by propagation along a minimum spanning tree of the kNN graph
- * (weights 1 - |n_p . n_q|, Hoppe et al. 1992), in each component starting from the point
- * farthest from the component's centroid, whose normal points away from the centroid. A point
- * without a plane (fewer than 3 neighbours, collinear) gets a zero normal.
- * \param[in] xyz  3 floats per vertex */
-std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz);
+ * (weights 1 - |n_p . n_q|, Hoppe et al. 1992), in each component so that the normal of the
+ * point farthest from the component's centroid points away from the centroid. A point without
+ * a plane (fewer than 3 neighbours, collinear) gets a zero normal. The tree is Prim's with the
+ * weights rounded down to multiples of 1/1024, which keeps it O(n + m).
+ * \param[in] xyz          3 floats per vertex
+ * \param[in] num_threads  threads for the plane fits (0 = all cores); the result does not
+ *                         depend on it */
+std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz,
+                                   unsigned num_threads = 0);
 
 /** \brief Per pair of touching supernodes (keyed (min, max), i != j), how concave their
  * contact is: the mean over the kNN edges (p, q) between them of the concave bend

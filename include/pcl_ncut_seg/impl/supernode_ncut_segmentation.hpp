@@ -587,7 +587,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
       // Measured between the supernodes, like eq. (8): its time counts as refinement time.
       const auto concavity_start = std::chrono::steady_clock::now();
       analysis_->concavity = pcl_ncut_seg::contactConcavity(
-          analysis_->graph, xyz.data(), pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data()),
+          analysis_->graph, xyz.data(),
+          pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data(), num_threads_),
           analysis_->supernodes.label);
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - concavity_start)
