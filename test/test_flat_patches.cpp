@@ -49,7 +49,9 @@ TriangleMesh openCup() {
       mesh.vertices.push_back(static_cast<float>(std::sin(a)));
       mesh.vertices.push_back(static_cast<float>(height * r / rings));
     }
-  auto ring = [&](int r, int i) { return static_cast<std::uint32_t>(1 + r * sectors + i % sectors); };
+  auto ring = [&](int r, int i) {
+    return static_cast<std::uint32_t>(1 + r * sectors + i % sectors);
+  };
   auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     mesh.faces.insert(mesh.faces.end(), {a, b, c});
     mesh.original_face.push_back(static_cast<std::uint32_t>(mesh.original_face.size()));
@@ -106,8 +108,8 @@ TEST(FlatPatches, SetterRejectsBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   EXPECT_EQ(seg.getFlatElongation(), 0.1);
   seg.setFlatElongation(0.25);
-  for (double bad : {-0.1, std::numeric_limits<double>::quiet_NaN(),
-                     std::numeric_limits<double>::infinity()}) {
+  for (double bad :
+       {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     seg.setFlatElongation(bad);
     EXPECT_EQ(seg.getFlatElongation(), 0.25);
   }
@@ -141,8 +143,8 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
         chips[flat] += node.left >= 0 && node.ncut < 3e-3;
     }
     std::cout << "seed " << seed << ": " << count[0] << " segments (" << chips[0]
-              << " splits at NCut < 3e-3) without flat patches, " << count[1] << " ("
-              << chips[1] << ") with\n";
+              << " splits at NCut < 3e-3) without flat patches, " << count[1] << " (" << chips[1]
+              << ") with\n";
     EXPECT_LT(chips[1], chips[0]) << "seed " << seed;
     EXPECT_LT(count[1], count[0]) << "seed " << seed;
   }
