@@ -111,9 +111,8 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
     const double d2 = max_pair > 0.0 ? 1.0 - lookup(conn, i, j) / max_pair : 1.0;
     // Flat patches (an extension): between two supernodes that are both flat, their widths
     // say nothing about a part boundary, so the width ratio does not weaken their edge.
-    const double width_ratio = flat[i] && flat[j]
-                                   ? 1.0
-                                   : std::min(width[i], width[j]) / std::max(width[i], width[j]);
+    const double width_ratio =
+        flat[i] && flat[j] ? 1.0 : std::min(width[i], width[j]) / std::max(width[i], width[j]);
     const double alpha_ij = std::max(params.alpha2 * width_ratio, 1e-300);
     // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
     const double crease = params.concavity_weight > 0.0 && concavity
