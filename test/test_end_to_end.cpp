@@ -238,8 +238,6 @@ const char* knownLimitation(const std::string& test, const std::string& shape) {
       {{"NumberOfSegments", "quadruped"},
        "the tail's supernode grows into the rear of the body: no saddle separates them"},
       {{"Density", "quadruped"}, "the tail/body leak (above) depends on the sampling"},
-      {{"Density", "dumbbell"},
-       "the bar has no centrality maximum: the balls' supernodes meet in its middle"},
   };
   const auto it = known.find({test, shape});
   return it == known.end() ? nullptr : it->second;

@@ -62,6 +62,7 @@ struct Options {
   double adjacent_share = -1;
   double bridge_gap = -1;
   double concavity = -1;
+  double flat = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -92,6 +93,7 @@ void printHelp() {
          "  -gapfloor F       setGapFloor (default: the library's default)\n"
          "  -bridge F         setBridgeGap (default: the library's default)\n"
          "  -concavity W      setConcavityWeight (default: the library's default)\n"
+         "  -flat E           setFlatElongation (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -191,6 +193,8 @@ Options parseOptions(int argc, char** argv) {
       o.adjacent_share = parseNumber(a, v);
     } else if (a == "-concavity") {
       o.concavity = parseNumber(a, v);
+    } else if (a == "-flat") {
+      o.flat = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
     } else if (a == "-gapfloor") {
@@ -263,9 +267,12 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setBridgeGap(o.bridge_gap);
   if (o.concavity >= 0)
     seg.setConcavityWeight(o.concavity);
+  if (o.flat >= 0)
+    seg.setFlatElongation(o.flat);
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
+    seg.setFlatElongation(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

@@ -269,6 +269,10 @@ std::vector<Flag> algorithmFlags() {
                "concave creases: the weight between touching supernodes is multiplied by "
                "exp(-W c), c how concave their contact is, >= 0; 0 = off",
                num(d.getConcavityWeight()), 0),
+      realFlag("-flat", "E",
+               "flat patches: between two supernodes with feature height < E sqrt(feature "
+               "area), eq. (9) leaves out the width ratio, >= 0; 0 = off",
+               num(d.getFlatElongation()), 0),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -281,7 +285,7 @@ std::vector<Flag> algorithmFlags() {
               num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernodes that meet at no saddle, no bridging of kNN-graph "
-                           "components, no concavity term, recursive bisection while "
+                           "components, no concavity term, no flat patches, recursive bisection while "
                            "NCut <= T instead of the largest-gap rule, exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
@@ -346,6 +350,8 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setAdjacentShare(flags.real("-adjacent_share"));
   if (flags.has("-concavity"))
     seg.setConcavityWeight(flags.real("-concavity"));
+  if (flags.has("-flat"))
+    seg.setFlatElongation(flags.real("-flat"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-min_fraction"))
@@ -361,6 +367,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setLargestGapStopping(false);
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
+    seg.setFlatElongation(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;

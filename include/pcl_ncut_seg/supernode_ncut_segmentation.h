@@ -215,6 +215,14 @@ public:
   void setConcavityWeight(double weight);
   double getConcavityWeight() const { return similarity_.concavity_weight; }
 
+  /** \brief Flat patches: a supernode is flat when its feature height is below e times the
+   * square root of its feature area (f_h < e sqrt(f_a)); between two flat supernodes the
+   * weight of eq. (9) leaves out the ratio of their feature widths, which a near-zero height
+   * makes meaningless (patches of a plate or a cup wall would otherwise be cut apart for
+   * almost nothing); >= 0, default 0.1, 0 = off (the paper). */
+  void setFlatElongation(double elongation);
+  double getFlatElongation() const { return similarity_.flat_elongation; }
+
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
    * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);

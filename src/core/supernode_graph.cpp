@@ -86,6 +86,14 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   for (std::uint32_t s = 0; s < l; ++s)
     width[s] = std::max(static_cast<double>(stats.width[s]) / width_unit, 1e-300);
 
+  // A supernode is flat when its feature height is small against its size: f_h < e sqrt(f_a)
+  // (both lengths). Its width f_a / f_h (eq. 4) is then inflated by a near-zero height: on a
+  // plate or a cup wall, neighbouring patches differ in width a hundredfold, and eq. (9) would
+  // make their edge exp(-20) or less.
+  std::vector<bool> flat(l, false);
+  for (std::uint32_t s = 0; s < l; ++s)
+    flat[s] = stats.height[s] < params.flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
+
   g.mass.assign(2 * l, 0.0);
   for (std::uint32_t s = 0; s < l; ++s)
     g.mass[l + s] = stats.area[s];
@@ -101,8 +109,11 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   auto similarity = [&](std::uint32_t i, std::uint32_t j) {
     const double d1 = max_dh > 0.0 ? std::abs(stats.height[i] - stats.height[j]) / max_dh : 0.0;
     const double d2 = max_pair > 0.0 ? 1.0 - lookup(conn, i, j) / max_pair : 1.0;
-    const double alpha_ij = std::max(
-        params.alpha2 * std::min(width[i], width[j]) / std::max(width[i], width[j]), 1e-300);
+    // Flat patches (an extension): between two supernodes that are both flat, their widths
+    // say nothing about a part boundary, so the width ratio does not weaken their edge.
+    const double width_ratio =
+        flat[i] && flat[j] ? 1.0 : std::min(width[i], width[j]) / std::max(width[i], width[j]);
+    const double alpha_ij = std::max(params.alpha2 * width_ratio, 1e-300);
     // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
     const double crease = params.concavity_weight > 0.0 && concavity
                               ? params.concavity_weight * lookup(*concavity, i, j)

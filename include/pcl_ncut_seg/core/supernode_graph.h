@@ -57,6 +57,11 @@ struct SimilarityParams {
   /// core/concavity.h), so that cuts follow concave creases. 0 = the paper (no such factor).
   /// Without a concavity map (buildSupernodeGraph's last argument) it has no effect.
   double concavity_weight = 3.0;
+  /// Flat patches: a supernode is flat when its feature height is below flat_elongation times
+  /// the square root of its feature area (f_h < e sqrt(f_a)); between two flat supernodes
+  /// alpha_ij of eq. (9) is alpha2, without the width ratio, as their widths f_a / f_h are
+  /// inflated by a near-zero height. 0 = the paper (no supernode is flat).
+  double flat_elongation = 0.1;
 };
 
 /** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created

@@ -326,6 +326,17 @@ void pcl::SupernodeNCutSegmentation<PointT>::setConcavityWeight(double weight) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setFlatElongation(double elongation) {
+  if (!(elongation >= 0.0) || !std::isfinite(elongation)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setFlatElongation] elongation must be finite "
+              "and >= 0, got %g; keeping %g.\n",
+              elongation, similarity_.flat_elongation);
+    return;
+  }
+  similarity_.flat_elongation = elongation;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
   if (!(share >= 0.0 && share <= 1.0)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
