@@ -11,6 +11,7 @@
 #include <pcl/features/normal_3d.h>
 #include <pcl/search/kdtree.h>
 
+#include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/morton.h>
 
 #include <algorithm>
@@ -376,71 +377,44 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
              before - valid.size());
   // Points at exactly the position of an earlier one are analysed once and share its segment:
   // copies would fill each other's k nearest neighbours with zero-length edges.
-  duplicates_.clear();
-  if (valid.size() > 1) {
-    std::vector<int> by_position(valid);
-    auto key = [this](int i) {
-      const PointT& p = (*input_)[i];
-      return std::make_tuple(p.x, p.y, p.z);
-    };
-    std::sort(by_position.begin(), by_position.end(), [&](int a, int b) {
-      return key(a) < key(b) || (key(a) == key(b) && a < b);
-    });
-    std::vector<std::pair<int, int>> copy_of; // (duplicate, first point at its position)
-    for (std::size_t i = 1, first = 0; i < by_position.size(); ++i) {
-      if (key(by_position[i]) == key(by_position[first]))
-        copy_of.emplace_back(by_position[i], by_position[first]);
-      else
-        first = i;
-    }
-    if (!copy_of.empty()) {
-      std::vector<int> copies;
-      for (const auto& c : copy_of)
-        copies.push_back(c.first);
-      std::sort(copies.begin(), copies.end());
-      std::vector<int> distinct;
-      std::set_difference(valid.begin(), valid.end(), copies.begin(), copies.end(),
-                          std::back_inserter(distinct));
-      valid.swap(distinct);
-      for (const auto& c : copy_of)
-        duplicates_.emplace_back(
-            c.first, static_cast<std::uint32_t>(
-                         std::lower_bound(valid.begin(), valid.end(), c.second) - valid.begin()));
-    }
-  }
-  const std::size_t n = valid.size();
-  if (n == 0) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point.\n");
-    return false;
-  }
-  if (n > std::numeric_limits<std::uint32_t>::max() / 64) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] too many points (%zu).\n", n);
-    return false;
-  }
-
   // Graph vertices are numbered along a Morton (Z-order) curve: every phase then reads its
   // neighbours from nearby memory (2-4x faster on large clouds than the input order). Results
   // are reported per input point; segments are numbered by their smallest input index.
   // Ties in the centrality go by input order, so the numbering does not change results.
+  if (valid.size() > std::numeric_limits<std::uint32_t>::max() / 64) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] too many points (%zu).\n",
+              valid.size());
+    return false;
+  }
+  duplicates_.clear();
   std::vector<std::uint32_t> tie_rank;
+  std::vector<float> raw; // the input's own coordinates, in vertex order: the kd-tree's points
   {
-    std::vector<float> raw(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t m = valid.size();
+    raw.resize(3 * m);
+    for (std::size_t i = 0; i < m; ++i) {
       const PointT& p = (*input_)[valid[i]];
       raw[3 * i + 0] = p.x;
       raw[3 * i + 1] = p.y;
       raw[3 * i + 2] = p.z;
     }
-    tie_rank = pcl_ncut_seg::mortonOrder(raw.data(), n); // valid is sorted: rank = position
-    std::vector<int> reordered(n);
-    std::vector<std::uint32_t> vertex_of(n); // sorted position -> Morton vertex
-    for (std::size_t i = 0; i < n; ++i) {
-      reordered[i] = valid[tie_rank[i]];
-      vertex_of[tie_rank[i]] = static_cast<std::uint32_t>(i);
+    pcl_ncut_seg::DistinctMortonOrder order = pcl_ncut_seg::distinctMortonOrder(raw.data(), m);
+    std::vector<int> reordered(order.point.size());
+    std::vector<float> reordered_raw(3 * order.point.size());
+    for (std::size_t v = 0; v < order.point.size(); ++v) {
+      reordered[v] = valid[order.point[v]];
+      std::copy_n(&raw[3 * std::size_t(order.point[v])], 3, &reordered_raw[3 * v]);
     }
+    for (const auto& c : order.copies)
+      duplicates_.emplace_back(valid[c.first], c.second);
     valid.swap(reordered);
-    for (auto& d : duplicates_)
-      d.second = vertex_of[d.second];
+    raw.swap(reordered_raw);
+    tie_rank = std::move(order.rank);
+  }
+  const std::size_t n = valid.size();
+  if (n == 0) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point.\n");
+    return false;
   }
 
   // Coordinates relative to the centroid, in double first, so that a model far from the
@@ -471,18 +445,18 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
              n, k, k_);
   std::vector<std::uint32_t> knn(n * std::max<std::size_t>(k, 1),
                                  std::numeric_limits<std::uint32_t>::max());
-  if (k > 0) {
-    // A search method we create is dropped after use: its tree is no use to the later phases.
-    const bool own_search = !search_;
-    if (own_search)
-      search_.reset(new pcl::search::KdTree<PointT>(false));
+  const int threads = ncut_detail::usableThreads(num_threads_);
+  if (k > 0 && !search_) {
+    // The default: FLANN's kd-tree as pcl::search::KdTree builds it, over a compact copy of
+    // the points in vertex order, queried in parallel without PCL's per-query wrapping.
+    pcl_ncut_seg::kNearestNeighbours(raw.data(), n, k, threads, knn.data());
+  } else if (k > 0) {
     pcl::IndicesPtr valid_ptr(new pcl::Indices(valid.begin(), valid.end()));
     search_->setInputCloud(input_, valid_ptr);
     std::vector<std::int64_t> local(cloud_size, -1);
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
     // Queries in vertex (Morton) order visit the search tree coherently.
-    const int threads = ncut_detail::usableThreads(num_threads_);
 #pragma omp parallel num_threads(threads)
     {
       pcl::Indices nn;
@@ -505,10 +479,10 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
         }
       }
     }
-    if (own_search)
-      search_.reset();
   }
-  pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+  std::vector<float>().swap(raw);
+  pcl_ncut_seg::CsrGraph graph =
+      pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k, threads);
   std::vector<std::uint32_t>().swap(knn); // free before the expensive stage
   if (!cad_mode_) // CAD mode fits planes to the coordinates later
     std::vector<float>().swap(xyz);
