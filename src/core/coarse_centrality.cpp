@@ -131,10 +131,14 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
                                   int threads) {
   const std::size_t n = g.numVertices();
   std::vector<TwoLabels> label(n, TwoLabels{kNoSource, kNoSource, kInf, kInf});
-  std::vector<std::uint8_t> next_active(n, 0);
-  std::vector<std::uint32_t> active;
-  for (std::uint32_t i = 0; i < sources.size(); ++i)
+  // fresh: labels changed in the last round. A vertex has taken in every other neighbour's
+  // labels already, in the round after they last changed.
+  std::vector<std::uint8_t> next_active(n, 0), fresh(n, 0);
+  std::vector<std::uint32_t> active, last_active(sources);
+  for (std::uint32_t i = 0; i < sources.size(); ++i) {
     offer(label[sources[i]], i, 0.0f);
+    fresh[sources[i]] = 1;
+  }
   for (std::uint32_t s : sources)
     for (std::uint32_t e = g.offsets[s]; e < g.offsets[s + 1]; ++e)
       next_active[g.targets[e]] = 1;
@@ -149,6 +153,7 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
       }
     if (active.empty())
       break;
+
     updated.resize(active.size());
     changed.assign(active.size(), 0);
     const auto count = static_cast<std::ptrdiff_t>(active.size());
@@ -157,7 +162,10 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
       const std::uint32_t v = active[i];
       TwoLabels l = label[v];
       for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e) {
-        const TwoLabels& u = label[g.targets[e]];
+        const std::uint32_t t = g.targets[e];
+        if (!fresh[t])
+          continue;
+        const TwoLabels& u = label[t];
         const float w = g.lengths[e];
         if (u.first != kNoSource)
           offer(l, u.first, u.first_dist + w);
@@ -168,17 +176,23 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
       changed[i] = l.first != label[v].first || l.second != label[v].second ||
                    l.first_dist != label[v].first_dist || l.second_dist != label[v].second_dist;
     }
+    const auto last = static_cast<std::ptrdiff_t>(last_active.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < last; ++i)
+      fresh[last_active[i]] = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 512)
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       if (!changed[i])
         continue;
       const std::uint32_t v = active[i];
       label[v] = updated[i];
+      fresh[v] = 1;
       for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e) {
 #pragma omp atomic write
         next_active[g.targets[e]] = 1;
       }
     }
+    last_active.swap(active);
   }
   return label;
 }

@@ -51,6 +51,8 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
         return true;
     return false;
   };
+  // Per kNN entry p -> q: bit 0, q goes into p's row; bit 1, p goes into q's row too.
+  std::vector<std::uint8_t> put(n * k, 0);
   // Rows are filled in any order by the threads and sorted afterwards, so the graph is the
   // same for any number of threads.
   CsrGraph g;
@@ -63,9 +65,11 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
       const std::uint32_t q = knn[p * k + j];
       if (!used(p, q) || isDuplicateInRow(p, j))
         continue;
+      const bool reverse = !listsUsed(q, p);
+      put[p * k + j] = reverse ? 3 : 1;
 #pragma omp atomic
       ++count[p];
-      if (!listsUsed(q, p)) {
+      if (reverse) {
 #pragma omp atomic
         ++count[q];
       }
@@ -80,14 +84,14 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
     for (std::ptrdiff_t r = 0; r < rows; ++r) {
       const auto p = static_cast<std::size_t>(r);
       for (std::size_t j = 0; j < k; ++j) {
-        const std::uint32_t q = knn[p * k + j];
-        if (!used(p, q) || isDuplicateInRow(p, j))
+        if (!put[p * k + j])
           continue;
+        const std::uint32_t q = knn[p * k + j];
         std::uint32_t at;
 #pragma omp atomic capture
         at = fill[p]++;
         g.targets[at] = q;
-        if (!listsUsed(q, p)) {
+        if (put[p * k + j] & 2) {
 #pragma omp atomic capture
           at = fill[q]++;
           g.targets[at] = static_cast<std::uint32_t>(p);
@@ -95,6 +99,7 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
       }
     }
   }
+  put = std::vector<std::uint8_t>();
   g.lengths.resize(g.targets.size());
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
