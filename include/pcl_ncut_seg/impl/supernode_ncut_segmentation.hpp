@@ -419,21 +419,16 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
 
   // Coordinates relative to the centroid, in double first, so that a model far from the
   // origin keeps its float precision.
+  // (raw holds the input's x, y, z in vertex order.)
   double c[3] = {0, 0, 0};
-  for (int idx : valid) {
-    c[0] += (*input_)[idx].x;
-    c[1] += (*input_)[idx].y;
-    c[2] += (*input_)[idx].z;
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      c[d] += raw[3 * i + d];
   for (double& v : c)
     v /= static_cast<double>(n);
   std::vector<float> xyz(3 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const PointT& p = (*input_)[valid[i]];
-    xyz[3 * i + 0] = static_cast<float>(p.x - c[0]);
-    xyz[3 * i + 1] = static_cast<float>(p.y - c[1]);
-    xyz[3 * i + 2] = static_cast<float>(p.z - c[2]);
-  }
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    xyz[i] = static_cast<float>(raw[i] - c[i % 3]);
 
   if (progress_)
     progress_("kNN", 0.0);
