@@ -11,8 +11,8 @@
 #include <pcl/features/normal_3d.h>
 #include <pcl/search/kdtree.h>
 
-#include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/morton.h>
+#include <pcl_ncut_seg/core/knn.h>
 
 #include <algorithm>
 #include <chrono>
