@@ -18,7 +18,7 @@ std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
     std::uint32_t bits;
     std::memcpy(&bits, &v, sizeof bits);
     bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
-    key[i] = ~bits;                                              // descending
+    key[i] = ~bits;                                             // descending
   }
   std::vector<std::uint32_t> order(n), other(n);
   std::iota(order.begin(), order.end(), 0u);
