@@ -69,8 +69,10 @@ public:
   void setIndices(const IndicesConstPtr& indices) override;
   void setIndices(const PointIndicesConstPtr& indices) override;
 
-  /** \brief Search method for the kNN graph (default: a pcl::search::KdTree, i.e. FLANN, built
-   * in extract() and released once the graph is built; getSearchMethod() then returns null). */
+  /** \brief Search method for the kNN graph (default: FLANN's kd-tree with the index and
+   * parameters of pcl::search::KdTree, so the same neighbours, built in extract() over a compact
+   * copy of the points, queried in parallel and released once the graph is built;
+   * getSearchMethod() then returns null). */
   void setSearchMethod(const KdTreePtr& search);
   KdTreePtr getSearchMethod() const { return search_; }
 

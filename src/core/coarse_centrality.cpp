@@ -7,34 +7,211 @@
 #include <limits>
 #include <numeric>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace pcl_ncut_seg {
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::uint32_t kNoSource = std::numeric_limits<std::uint32_t>::max();
 
+/// The threads for a request (0 = all cores).
+int threadCount(unsigned requested) {
+#ifdef _OPENMP
+  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
+  return requested > 0 ? static_cast<int>(std::min<unsigned>(requested, usable))
+                       : omp_get_max_threads();
+#else
+  (void)requested;
+  return 1;
+#endif
+}
+
+int threadId() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+/// Per thread: a bounded search and its distance array (+infinity between searches). Aligned
+/// to cache lines, so that threads do not write to each other's lines.
+struct alignas(64) BallSearch {
+  explicit BallSearch(const CsrGraph& g) : search(g), dist(g.numVertices(), kInf) {}
+  BucketDijkstra search;
+  std::vector<float> dist;
+  std::vector<std::uint32_t> touched;
+};
+
 /// Greedy cover by balls of radius `radius`: an uncovered vertex (in `visit` order) becomes a
-/// representative and covers every vertex within the radius.
+/// representative and covers every vertex within the radius. The balls of the next uncovered
+/// vertices are searched in parallel, then accepted in visit order if their centre is still
+/// uncovered, so the cover is the sequential one for any number of threads.
 std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
                                         const std::vector<std::uint32_t>& visit,
-                                        BucketDijkstra& search, std::vector<float>& dist,
-                                        std::vector<float>& bound) {
+                                        std::vector<BallSearch>& searches,
+                                        const std::vector<float>& bound) {
   const std::size_t n = g.numVertices();
-  std::vector<bool> covered(n, false);
-  std::vector<std::uint32_t> reps, touched;
-  std::fill(bound.begin(), bound.end(), radius);
-  for (std::uint32_t v : visit) {
-    if (covered[v])
-      continue;
-    reps.push_back(v);
-    touched.clear();
-    search.run(v, dist.data(), bound.data(), &touched);
-    for (std::uint32_t u : touched) {
-      if (dist[u] <= radius)
-        covered[u] = true;
-      dist[u] = kInf;
+  const int threads = static_cast<int>(searches.size());
+  std::vector<std::uint8_t> covered(n, 0);
+  std::vector<std::uint32_t> reps, candidates;
+  // The block of candidates searched together grows while under 1% of them turn out covered
+  // by an earlier ball of the same block (searched in vain), and shrinks above 5%: few
+  // synchronisations (each can cost a time slice when another process holds a core) for
+  // little wasted work (measured at 181k and 1M points: 3-4% of the searches, 40-120 blocks
+  // per cover).
+  const std::size_t min_block = 32 * static_cast<std::size_t>(threads);
+  const std::size_t max_block = 8192 * static_cast<std::size_t>(threads);
+  std::size_t block = 128 * static_cast<std::size_t>(threads);
+  std::vector<std::vector<std::uint32_t>> balls;
+  for (std::size_t next = 0; next < n;) {
+    candidates.clear();
+    for (; next < n && candidates.size() < block; ++next)
+      if (!covered[visit[next]])
+        candidates.push_back(visit[next]);
+    const auto count = static_cast<std::ptrdiff_t>(candidates.size());
+    if (balls.size() < candidates.size())
+      balls.resize(candidates.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (count > 1)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      BallSearch& s = searches[threadId()];
+      s.touched.clear();
+      s.search.run(candidates[i], s.dist.data(), bound.data(), &s.touched);
+      std::size_t inside = 0;
+      for (std::uint32_t u : s.touched) {
+        if (s.dist[u] <= radius)
+          s.touched[inside++] = u;
+        s.dist[u] = kInf;
+      }
+      balls[i].assign(s.touched.begin(), s.touched.begin() + inside);
     }
+    std::ptrdiff_t in_vain = 0;
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      if (covered[candidates[i]]) {
+        ++in_vain;
+        continue;
+      }
+      reps.push_back(candidates[i]);
+      for (std::uint32_t u : balls[i])
+        covered[u] = 1;
+    }
+    if (in_vain * 100 < count)
+      block = std::min(2 * block, max_block);
+    else if (in_vain * 20 > count)
+      block = std::max(block / 2, min_block);
   }
   return reps;
+}
+
+/// Two labels (source, distance) per vertex, compared by distance, then source index.
+struct TwoLabels {
+  std::uint32_t first, second;
+  float first_dist, second_dist;
+};
+
+inline bool before(float da, std::uint32_t sa, float db, std::uint32_t sb) {
+  return da < db || (da == db && sa < sb);
+}
+
+/// Offer (s, d) to the labels l: keep the two best distinct sources.
+inline void offer(TwoLabels& l, std::uint32_t s, float d) {
+  if (s == l.first) {
+    if (d < l.first_dist)
+      l.first_dist = d;
+  } else if (s == l.second) {
+    if (d < l.second_dist) {
+      l.second_dist = d;
+      if (before(l.second_dist, l.second, l.first_dist, l.first)) {
+        std::swap(l.first, l.second);
+        std::swap(l.first_dist, l.second_dist);
+      }
+    }
+  } else if (before(d, s, l.first_dist, l.first)) {
+    l.second = l.first;
+    l.second_dist = l.first_dist;
+    l.first = s;
+    l.first_dist = d;
+  } else if (before(d, s, l.second_dist, l.second)) {
+    l.second = s;
+    l.second_dist = d;
+  }
+}
+
+/// The two nearest sources of every vertex (graph distance, ties to the lower source index),
+/// by rounds in which every vertex next to a change takes the best labels its neighbours
+/// offer. A round reads the labels of the previous one only, so the result does not depend
+/// on the number of threads. A vertex with fewer than two reachable sources gets kNoSource and
+/// +infinity for the missing ones.
+std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint32_t>& sources,
+                                  int threads) {
+  const std::size_t n = g.numVertices();
+  std::vector<TwoLabels> label(n, TwoLabels{kNoSource, kNoSource, kInf, kInf});
+  // fresh: labels changed in the last round. A vertex has taken in every other neighbour's
+  // labels already, in the round after they last changed.
+  std::vector<std::uint8_t> next_active(n, 0), fresh(n, 0);
+  std::vector<std::uint32_t> active, last_active(sources);
+  for (std::uint32_t i = 0; i < sources.size(); ++i) {
+    offer(label[sources[i]], i, 0.0f);
+    fresh[sources[i]] = 1;
+  }
+  for (std::uint32_t s : sources)
+    for (std::uint32_t e = g.offsets[s]; e < g.offsets[s + 1]; ++e)
+      next_active[g.targets[e]] = 1;
+  std::vector<TwoLabels> updated;
+  std::vector<std::uint8_t> changed;
+  for (;;) {
+    active.clear();
+    for (std::uint32_t v = 0; v < n; ++v)
+      if (next_active[v]) {
+        active.push_back(v);
+        next_active[v] = 0;
+      }
+    if (active.empty())
+      break;
+
+    updated.resize(active.size());
+    changed.assign(active.size(), 0);
+    const auto count = static_cast<std::ptrdiff_t>(active.size());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 512)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      const std::uint32_t v = active[i];
+      TwoLabels l = label[v];
+      for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e) {
+        const std::uint32_t t = g.targets[e];
+        if (!fresh[t])
+          continue;
+        const TwoLabels& u = label[t];
+        const float w = g.lengths[e];
+        if (u.first != kNoSource)
+          offer(l, u.first, u.first_dist + w);
+        if (u.second != kNoSource)
+          offer(l, u.second, u.second_dist + w);
+      }
+      updated[i] = l;
+      changed[i] = l.first != label[v].first || l.second != label[v].second ||
+                   l.first_dist != label[v].first_dist || l.second_dist != label[v].second_dist;
+    }
+    const auto last = static_cast<std::ptrdiff_t>(last_active.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::ptrdiff_t i = 0; i < last; ++i)
+      fresh[last_active[i]] = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 512)
+    for (std::ptrdiff_t i = 0; i < count; ++i) {
+      if (!changed[i])
+        continue;
+      const std::uint32_t v = active[i];
+      label[v] = updated[i];
+      fresh[v] = 1;
+      for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e) {
+#pragma omp atomic write
+        next_active[g.targets[e]] = 1;
+      }
+    }
+    last_active.swap(active);
+  }
+  return label;
 }
 } // namespace
 
@@ -58,73 +235,94 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   const double mean_edge = g.lengths.empty() ? 1.0 : sum / static_cast<double>(g.lengths.size());
   double radius = mean_edge * std::sqrt(static_cast<double>(n) /
                                         (9.2 * static_cast<double>(num_representatives)));
-  std::vector<float> dist(n, kInf), bound(n);
-  BucketDijkstra search(g);
+  const int threads = threadCount(num_threads);
+  std::vector<BallSearch> searches;
+  for (int t = 0; t < threads; ++t)
+    searches.emplace_back(g);
   std::vector<std::uint32_t> visit(n), reps;
   for (std::uint32_t v = 0; v < n; ++v)
     visit[tie_rank ? tie_rank[v] : v] = v;
   for (int attempt = 0; attempt < 3; ++attempt) {
-    reps = coverByBalls(g, static_cast<float>(radius), visit, search, dist, bound);
+    const std::vector<float> bound(n, static_cast<float>(radius));
+    reps = coverByBalls(g, static_cast<float>(radius), visit, searches, bound);
     const double ratio =
         static_cast<double>(reps.size()) / static_cast<double>(num_representatives);
     if (ratio > 0.8 && ratio < 1.25)
       break;
     radius *= std::sqrt(ratio);
   }
-  dist = std::vector<float>();
-  bound = std::vector<float>();
   visit = std::vector<std::uint32_t>();
 
   // 2. The two nearest representatives of every vertex.
-  const NearestSources near = nearestTwoSources(g, reps);
+  const std::vector<TwoLabels> near = nearestTwo(g, reps, threads);
 
-  // 3. The coarse graph: the shortest kNN path between neighbouring cells.
-  std::vector<std::tuple<std::uint32_t, std::uint32_t, float>> edges;
-  for (std::uint32_t u = 0; u < n; ++u)
-    for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
-      const std::uint32_t v = g.targets[e];
-      const std::uint32_t a = near.at[u].first, b = near.at[v].first;
-      if (a < b)
-        edges.emplace_back(a, b, near.at[u].first_dist + g.lengths[e] + near.at[v].first_dist);
-    }
-  std::sort(edges.begin(), edges.end());
+  // 3. The coarse graph: the shortest kNN path between neighbouring cells. The vertices are
+  //    grouped by cell; each cell lists its neighbour cells of higher index with the shortest
+  //    crossing (cells in parallel).
   const std::size_t c = reps.size();
+  std::vector<std::uint32_t> cell_begin(c + 1, 0), cell_vertices(n);
+  for (std::uint32_t u = 0; u < n; ++u)
+    ++cell_begin[near[u].first + 1];
+  for (std::size_t i = 0; i < c; ++i)
+    cell_begin[i + 1] += cell_begin[i];
+  {
+    std::vector<std::uint32_t> fill(cell_begin.begin(), cell_begin.end() - 1);
+    for (std::uint32_t u = 0; u < n; ++u)
+      cell_vertices[fill[near[u].first]++] = u;
+  }
+  // Per cell a: (b, length) for b > a, sorted by b, one entry per b (the shortest).
+  std::vector<std::vector<std::pair<std::uint32_t, float>>> higher(c);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<std::pair<std::uint32_t, float>> found;
+#pragma omp for schedule(dynamic, 64)
+    for (std::ptrdiff_t ai = 0; ai < static_cast<std::ptrdiff_t>(c); ++ai) {
+      const auto a = static_cast<std::uint32_t>(ai);
+      found.clear();
+      for (std::uint32_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i) {
+        const std::uint32_t u = cell_vertices[i];
+        for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
+          const std::uint32_t v = g.targets[e];
+          const std::uint32_t b = near[v].first;
+          if (a < b)
+            found.emplace_back(b, near[u].first_dist + g.lengths[e] + near[v].first_dist);
+        }
+      }
+      std::sort(found.begin(), found.end()); // the shortest first for each b
+      auto& out = higher[a];
+      for (std::size_t i = 0; i < found.size(); ++i)
+        if (i == 0 || found[i].first != found[i - 1].first)
+          out.push_back(found[i]);
+    }
+  }
+  cell_vertices = std::vector<std::uint32_t>();
   CsrGraph coarse;
   coarse.offsets.assign(c + 1, 0);
-  std::vector<std::tuple<std::uint32_t, std::uint32_t, float>> unique;
-  for (std::size_t i = 0; i < edges.size(); ++i)
-    if (i == 0 || std::get<0>(edges[i]) != std::get<0>(edges[i - 1]) ||
-        std::get<1>(edges[i]) != std::get<1>(edges[i - 1])) // the shortest comes first
-      unique.push_back(edges[i]);
-  edges = {};
-  for (const auto& [a, b, w] : unique) {
-    ++coarse.offsets[a + 1];
-    ++coarse.offsets[b + 1];
-  }
+  for (std::uint32_t a = 0; a < c; ++a)
+    for (const auto& [b, w] : higher[a]) {
+      ++coarse.offsets[a + 1];
+      ++coarse.offsets[b + 1];
+    }
   for (std::size_t i = 0; i < c; ++i)
     coarse.offsets[i + 1] += coarse.offsets[i];
   coarse.targets.resize(coarse.offsets[c]);
   coarse.lengths.resize(coarse.offsets[c]);
-  std::vector<std::uint32_t> fill(coarse.offsets.begin(), coarse.offsets.end() - 1);
-  for (const auto& [a, b, w] : unique) {
-    coarse.targets[fill[a]] = b;
-    coarse.lengths[fill[a]++] = w;
-    coarse.targets[fill[b]] = a;
-    coarse.lengths[fill[b]++] = w;
+  {
+    // Rows come out sorted: a's lower neighbours arrive in ascending order (from the loop over
+    // b < a), then its higher ones in ascending order.
+    std::vector<std::uint32_t> fill(coarse.offsets.begin(), coarse.offsets.end() - 1);
+    for (std::uint32_t a = 0; a < c; ++a)
+      for (const auto& [b, w] : higher[a]) {
+        coarse.targets[fill[b]] = a;
+        coarse.lengths[fill[b]++] = w;
+      }
+    for (std::uint32_t a = 0; a < c; ++a)
+      for (const auto& [b, w] : higher[a]) {
+        coarse.targets[fill[a]] = b;
+        coarse.lengths[fill[a]++] = w;
+      }
   }
-  unique = {};
-  std::vector<std::pair<std::uint32_t, float>> row;
-  for (std::size_t i = 0; i < c; ++i) {
-    row.clear();
-    for (std::uint32_t e = coarse.offsets[i]; e < coarse.offsets[i + 1]; ++e)
-      row.emplace_back(coarse.targets[e], coarse.lengths[e]);
-    std::sort(row.begin(), row.end());
-    std::uint32_t e = coarse.offsets[i];
-    for (const auto& [t, w] : row) {
-      coarse.targets[e] = t;
-      coarse.lengths[e++] = w;
-    }
-  }
+  higher = {};
 
   // 4. Eq. (1) on the coarse graph.
   // Ties on the coarse graph follow the representatives' ranks.
@@ -144,49 +342,77 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   // The coarse graph's paths zigzag through the representatives, so its distances exceed the
   // kNN graph's by a few percent. Measure the ratio on pairs of representatives 3 to 8 radii
   // apart, from 32 of them, with bounded searches on both graphs, and scale f by it.
-  double fine_sum = 0.0, coarse_sum = 0.0;
+  // The sources' searches run in parallel; the sums are taken in source order.
+  const std::size_t step = std::max<std::size_t>(1, c / 32);
+  std::vector<std::vector<std::pair<float, float>>> pairs((c + step - 1) / step);
   {
-    std::vector<float> fine_dist(n, kInf), fine_bound(n, static_cast<float>(8.0 * radius));
-    std::vector<float> coarse_dist(c, kInf), coarse_bound(c, static_cast<float>(12.0 * radius));
-    BucketDijkstra coarse_search(coarse);
-    std::vector<std::uint32_t> fine_touched, coarse_touched;
-    const std::size_t step = std::max<std::size_t>(1, c / 32);
-    for (std::size_t a = 0; a < c; a += step) {
-      fine_touched.clear();
-      coarse_touched.clear();
-      search.run(reps[a], fine_dist.data(), fine_bound.data(), &fine_touched);
-      coarse_search.run(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound.data(),
-                        &coarse_touched);
-      for (std::uint32_t b : coarse_touched) {
-        const float fine = fine_dist[reps[b]];
-        if (fine >= 3.0 * radius && fine <= 8.0 * radius) {
-          fine_sum += fine;
-          coarse_sum += coarse_dist[b];
+    const std::vector<float> fine_bound(n, static_cast<float>(8.0 * radius));
+    const std::vector<float> coarse_bound(c, static_cast<float>(12.0 * radius));
+#pragma omp parallel num_threads(threads)
+    {
+      BallSearch& fine = searches[threadId()];
+      BucketDijkstra coarse_search(coarse);
+      std::vector<float> coarse_dist(c, kInf);
+      std::vector<std::uint32_t> coarse_touched;
+#pragma omp for schedule(dynamic, 1)
+      for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(pairs.size()); ++si) {
+        const std::size_t a = static_cast<std::size_t>(si) * step;
+        fine.touched.clear();
+        coarse_touched.clear();
+        fine.search.run(reps[a], fine.dist.data(), fine_bound.data(), &fine.touched);
+        coarse_search.run(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound.data(),
+                          &coarse_touched);
+        for (std::uint32_t b : coarse_touched) {
+          const float d = fine.dist[reps[b]];
+          if (d >= 3.0 * radius && d <= 8.0 * radius)
+            pairs[si].emplace_back(d, coarse_dist[b]);
+          coarse_dist[b] = kInf;
         }
-        coarse_dist[b] = kInf;
+        for (std::uint32_t v : fine.touched)
+          fine.dist[v] = kInf;
       }
-      for (std::uint32_t v : fine_touched)
-        fine_dist[v] = kInf;
     }
   }
+  searches.clear();
+  double fine_sum = 0.0, coarse_sum = 0.0;
+  for (const auto& list : pairs)
+    for (const auto& [fine, coarse_d] : list) {
+      fine_sum += fine;
+      coarse_sum += coarse_d;
+    }
   const float scale = coarse_sum > 0.0 ? static_cast<float>(fine_sum / coarse_sum) : 1.0f;
 
   // 5. Back to every vertex, linearly between its two nearest representatives.
   Centrality out;
   out.f.resize(n);
-  for (std::uint32_t p = 0; p < n; ++p) {
-    const float d1 = near.at[p].first_dist, d2 = near.at[p].second_dist;
-    const float f1 = scale * cc.f[near.at[p].first];
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t>(n); ++pi) {
+    const auto p = static_cast<std::size_t>(pi);
+    const float d1 = near[p].first_dist, d2 = near[p].second_dist;
+    const float f1 = scale * cc.f[near[p].first];
     float f;
-    if (near.at[p].second == kNoSource)
+    if (near[p].second == kNoSource)
       f = d1; // the component's only representative is its only sample: f = g(p, r1)
     else if (d1 + d2 > 0.0f)
-      f = (d2 * f1 + d1 * scale * cc.f[near.at[p].second]) / (d1 + d2);
+      f = (d2 * f1 + d1 * scale * cc.f[near[p].second]) / (d1 + d2);
     else
       f = f1;
     out.f[p] = f;
   }
-  out.num_components = connectedComponents(graph, out.component);
+  // Components: a vertex is in its representative's, and the coarse graph joins cells
+  // exactly where kNN edges do. Numbered in order of their smallest vertex.
+  out.num_components = cc.num_components;
+  out.component.resize(n);
+  {
+    std::vector<std::uint32_t> number(cc.num_components, kNoSource);
+    std::uint32_t next = 0;
+    for (std::uint32_t p = 0; p < n; ++p) {
+      std::uint32_t& id = number[cc.component[near[p].first]];
+      if (id == kNoSource)
+        id = next++;
+      out.component[p] = id;
+    }
+  }
   out.samples.reserve(cc.samples.size());
   for (std::uint32_t s : cc.samples)
     out.samples.push_back(reps[s]);

@@ -15,15 +15,19 @@ float distance(const float* xyz, std::size_t a, std::size_t b) {
 } // namespace
 
 CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
-                                std::size_t k) {
+                                std::size_t k, int num_threads) {
+  const auto rows = static_cast<std::ptrdiff_t>(n);
   // The kNN radius of each point: the distance to the farthest of its k nearest.
   std::vector<float> radius(n, 0.0f);
-  for (std::size_t p = 0; p < n; ++p)
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto p = static_cast<std::size_t>(r);
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
       if (q < n && q != p)
         radius[p] = std::max(radius[p], distance(xyz, p, q));
     }
+  }
   // p -> q is used unless it is over kFarEdgeRatio times q's radius: a lone far point (an
   // outlier) would otherwise reach into a surface over a distance no surface edge has, and
   // its centrality and area would dominate the refinement thresholds (Sec. 4.3).
@@ -47,38 +51,63 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
         return true;
     return false;
   };
+  // Per kNN entry p -> q: bit 0, q goes into p's row; bit 1, p goes into q's row too.
+  std::vector<std::uint8_t> put(n * k, 0);
+  // Rows are filled in any order by the threads and sorted afterwards, so the graph is the
+  // same for any number of threads.
   CsrGraph g;
   g.offsets.assign(n + 1, 0);
-  for (std::size_t p = 0; p < n; ++p)
+  std::uint32_t* count = g.offsets.data() + 1;
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto p = static_cast<std::size_t>(r);
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
       if (!used(p, q) || isDuplicateInRow(p, j))
         continue;
-      ++g.offsets[p + 1];
-      if (!listsUsed(q, p))
-        ++g.offsets[q + 1];
+      const bool reverse = !listsUsed(q, p);
+      put[p * k + j] = reverse ? 3 : 1;
+#pragma omp atomic
+      ++count[p];
+      if (reverse) {
+#pragma omp atomic
+        ++count[q];
+      }
     }
+  }
   for (std::size_t v = 0; v < n; ++v)
     g.offsets[v + 1] += g.offsets[v];
   g.targets.resize(g.offsets[n]);
   {
     std::vector<std::uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
-    for (std::size_t p = 0; p < n; ++p)
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+    for (std::ptrdiff_t r = 0; r < rows; ++r) {
+      const auto p = static_cast<std::size_t>(r);
       for (std::size_t j = 0; j < k; ++j) {
-        const std::uint32_t q = knn[p * k + j];
-        if (!used(p, q) || isDuplicateInRow(p, j))
+        if (!put[p * k + j])
           continue;
-        g.targets[fill[p]++] = q;
-        if (!listsUsed(q, p))
-          g.targets[fill[q]++] = static_cast<std::uint32_t>(p);
+        const std::uint32_t q = knn[p * k + j];
+        std::uint32_t at;
+#pragma omp atomic capture
+        at = fill[p]++;
+        g.targets[at] = q;
+        if (put[p * k + j] & 2) {
+#pragma omp atomic capture
+          at = fill[q]++;
+          g.targets[at] = static_cast<std::uint32_t>(p);
+        }
       }
+    }
   }
-  for (std::size_t v = 0; v < n; ++v)
-    std::sort(g.targets.begin() + g.offsets[v], g.targets.begin() + g.offsets[v + 1]);
+  put = std::vector<std::uint8_t>();
   g.lengths.resize(g.targets.size());
-  for (std::size_t v = 0; v < n; ++v)
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto v = static_cast<std::size_t>(r);
+    std::sort(g.targets.begin() + g.offsets[v], g.targets.begin() + g.offsets[v + 1]);
     for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
       g.lengths[e] = distance(xyz, v, g.targets[e]);
+  }
   return g;
 }
 

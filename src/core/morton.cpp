@@ -52,4 +52,78 @@ std::vector<std::uint32_t> mortonOrder(const float* xyz, std::size_t n) {
   return order;
 }
 
+DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n) {
+  const std::vector<std::uint32_t> code = mortonCodes(xyz, n);
+  // LSD radix sort on the 30-bit code, 10 bits a pass; stable, so ties stay in index order.
+  std::vector<std::uint32_t> order(n), other(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    order[i] = i;
+  for (int shift = 0; shift < 30; shift += 10) {
+    std::vector<std::size_t> start(1025, 0);
+    for (std::uint32_t i : order)
+      ++start[((code[i] >> shift) & 1023u) + 1];
+    for (std::size_t b = 0; b < 1024; ++b)
+      start[b + 1] += start[b];
+    for (std::uint32_t i : order)
+      other[start[(code[i] >> shift) & 1023u]++] = i;
+    order.swap(other);
+  }
+  // Within a cell, equal positions: sort the cell's points by (x, y, z, index).
+  std::vector<std::uint32_t> first(n); // per point: the first point at its position
+  std::vector<std::uint32_t> cell;
+  auto less = [xyz](std::uint32_t a, std::uint32_t b) {
+    const float* p = xyz + 3 * std::size_t(a);
+    const float* q = xyz + 3 * std::size_t(b);
+    if (p[0] != q[0])
+      return p[0] < q[0];
+    if (p[1] != q[1])
+      return p[1] < q[1];
+    if (p[2] != q[2])
+      return p[2] < q[2];
+    return a < b;
+  };
+  auto same = [xyz](std::uint32_t a, std::uint32_t b) {
+    const float* p = xyz + 3 * std::size_t(a);
+    const float* q = xyz + 3 * std::size_t(b);
+    return p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+  };
+  bool any_copy = false;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    while (j < n && code[order[j]] == code[order[i]])
+      ++j;
+    first[order[i]] = order[i];
+    if (j - i > 1) {
+      cell.assign(order.begin() + i, order.begin() + j);
+      std::sort(cell.begin(), cell.end(), less);
+      for (std::size_t c = 0; c < cell.size(); ++c) {
+        const bool copy = c > 0 && same(cell[c], cell[c - 1]);
+        first[cell[c]] = copy ? first[cell[c - 1]] : cell[c];
+        any_copy = any_copy || copy;
+      }
+    }
+    i = j;
+  }
+  DistinctMortonOrder out;
+  if (!any_copy) {
+    out.point = std::move(order);
+    out.rank = out.point;
+    return out;
+  }
+  std::vector<std::uint32_t> rank_of(n); // per point: rank among the distinct points
+  for (std::uint32_t i = 0, r = 0; i < n; ++i)
+    rank_of[i] = first[i] == i ? r++ : 0;
+  std::vector<std::uint32_t> vertex_of(n);
+  for (std::uint32_t i : order)
+    if (first[i] == i) {
+      vertex_of[i] = static_cast<std::uint32_t>(out.point.size());
+      out.point.push_back(i);
+      out.rank.push_back(rank_of[i]);
+    }
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (first[i] != i)
+      out.copies.emplace_back(i, vertex_of[first[i]]);
+  return out;
+}
+
 } // namespace pcl_ncut_seg

@@ -3,9 +3,38 @@
 #include <pcl_ncut_seg/core/supernodes.h>
 
 #include <algorithm>
+#include <cstring>
 #include <numeric>
 
 namespace pcl_ncut_seg {
+namespace {
+/// The vertices by descending f, ties by ascending index: a stable LSD radix sort (11 bits a
+/// pass) on a key that orders floats as numbers (-0 counts as 0), linear in n.
+std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
+  const std::size_t n = f.size();
+  std::vector<std::uint32_t> key(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float v = f[i] == 0.0f ? 0.0f : f[i];
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
+    key[i] = ~bits;                                             // descending
+  }
+  std::vector<std::uint32_t> order(n), other(n);
+  std::iota(order.begin(), order.end(), 0u);
+  for (int shift = 0; shift < 32; shift += 11) {
+    std::vector<std::size_t> start(2049, 0);
+    for (std::uint32_t i : order)
+      ++start[((key[i] >> shift) & 2047u) + 1];
+    for (std::size_t b = 0; b < 2048; ++b)
+      start[b + 1] += start[b];
+    for (std::uint32_t i : order)
+      other[start[(key[i] >> shift) & 2047u]++] = i;
+    order.swap(other);
+  }
+  return order;
+}
+} // namespace
 
 std::vector<std::uint32_t> Supernodes::localMaxima() const {
   std::vector<std::uint32_t> out;
@@ -29,11 +58,7 @@ Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   Supernodes sn;
   sn.label.assign(n, kNone);
   // Descending f, ties by index: a deterministic order for equal values.
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return f[a] > f[b] || (f[a] == f[b] && a < b);
-  });
+  const std::vector<std::uint32_t> order = descendingOrder(f);
   std::vector<std::uint32_t> rank(n);
   for (std::uint32_t i = 0; i < n; ++i)
     rank[order[i]] = i;

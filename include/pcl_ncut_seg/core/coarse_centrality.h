@@ -15,7 +15,8 @@ namespace pcl_ncut_seg {
  * so that about num_representatives balls cover the graph. Representatives are at least one radius
  * apart.
  * 2. Every vertex finds its two nearest representatives r1, r2 at graph distances d1 <= d2
- *    (a two-label multi-source search).
+ *    (a two-label multi-source search; equal distances go to the earlier representative).
+ * Steps 1-3 and 5 run in parallel; each gives the same result for any number of threads.
  * 3. The coarse graph joins the representatives of neighbouring cells (r1 differs across a kNN
  *    edge (u, v)) with the shortest such path, d1(u) + |uv| + d1(v).
  * 4. f is computed on the coarse graph with computeCentrality() (num_samples samples per

@@ -33,10 +33,11 @@ struct CsrGraph {
  * \param[in] knn        n * k neighbour indices (row p: p's neighbours, self excluded);
  *                       entries >= n are ignored (fewer neighbours found)
  * \param[in] k          neighbours per row
+ * \param[in] num_threads threads (>= 1); the graph does not depend on it
  * \return the graph; duplicate edges are merged.
  */
 CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
-                                std::size_t k);
+                                std::size_t k, int num_threads = 1);
 
 /** \brief Connected components of a graph.
  * \param[out] component  per vertex, its component id; ids are numbered in order of each

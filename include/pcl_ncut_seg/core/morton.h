@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -17,5 +18,21 @@ std::vector<std::uint32_t> mortonCodes(const float* xyz, std::size_t n);
 /** \brief The points in ascending Morton code, ties by index: order[i] is the point at
  * position i. */
 std::vector<std::uint32_t> mortonOrder(const float* xyz, std::size_t n);
+
+/** \brief The distinct positions among n points, in Morton order. */
+struct DistinctMortonOrder {
+  /// Per vertex (distinct position, in ascending Morton code, ties by index): the index of the
+  /// first point at its position.
+  std::vector<std::uint32_t> point;
+  /// Per vertex: its rank among the vertices in index order.
+  std::vector<std::uint32_t> rank;
+  /// (index of a point at an earlier point's position, vertex of that position).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;
+};
+
+/** \brief Points at exactly the same coordinates merged into one vertex (the first point at
+ * the position), the vertices in Morton order. Equal positions have equal codes, so copies are
+ * found among points of one grid cell: a radix sort on the code, then a sort within cells. */
+DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n);
 
 } // namespace pcl_ncut_seg

@@ -14,6 +14,7 @@
 #include <pcl_ncut_seg/core/bridging.h>
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/morton.h>
+#include <pcl_ncut_seg/core/knn.h>
 
 #include <algorithm>
 #include <chrono>
@@ -415,90 +416,58 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
              before - valid.size());
   // Points at exactly the position of an earlier one are analysed once and share its segment:
   // copies would fill each other's k nearest neighbours with zero-length edges.
+  // Graph vertices are numbered along a Morton (Z-order) curve: every phase then reads its
+  // neighbours from nearby memory (2-4x faster on large clouds than the input order). Results
+  // are reported per input point; segments are numbered by their smallest input index.
+  // Ties in the centrality go by input order, so the numbering does not change results.
+  if (valid.size() > std::numeric_limits<std::uint32_t>::max() / 64) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] too many points (%zu).\n",
+              valid.size());
+    return false;
+  }
   duplicates_.clear();
-  if (valid.size() > 1) {
-    std::vector<int> by_position(valid);
-    auto key = [this](int i) {
-      const PointT& p = (*input_)[i];
-      return std::make_tuple(p.x, p.y, p.z);
-    };
-    std::sort(by_position.begin(), by_position.end(), [&](int a, int b) {
-      return key(a) < key(b) || (key(a) == key(b) && a < b);
-    });
-    std::vector<std::pair<int, int>> copy_of; // (duplicate, first point at its position)
-    for (std::size_t i = 1, first = 0; i < by_position.size(); ++i) {
-      if (key(by_position[i]) == key(by_position[first]))
-        copy_of.emplace_back(by_position[i], by_position[first]);
-      else
-        first = i;
+  std::vector<std::uint32_t> tie_rank;
+  std::vector<float> raw; // the input's own coordinates, in vertex order: the kd-tree's points
+  {
+    const std::size_t m = valid.size();
+    raw.resize(3 * m);
+    for (std::size_t i = 0; i < m; ++i) {
+      const PointT& p = (*input_)[valid[i]];
+      raw[3 * i + 0] = p.x;
+      raw[3 * i + 1] = p.y;
+      raw[3 * i + 2] = p.z;
     }
-    if (!copy_of.empty()) {
-      std::vector<int> copies;
-      for (const auto& c : copy_of)
-        copies.push_back(c.first);
-      std::sort(copies.begin(), copies.end());
-      std::vector<int> distinct;
-      std::set_difference(valid.begin(), valid.end(), copies.begin(), copies.end(),
-                          std::back_inserter(distinct));
-      valid.swap(distinct);
-      for (const auto& c : copy_of)
-        duplicates_.emplace_back(
-            c.first, static_cast<std::uint32_t>(
-                         std::lower_bound(valid.begin(), valid.end(), c.second) - valid.begin()));
+    pcl_ncut_seg::DistinctMortonOrder order = pcl_ncut_seg::distinctMortonOrder(raw.data(), m);
+    std::vector<int> reordered(order.point.size());
+    std::vector<float> reordered_raw(3 * order.point.size());
+    for (std::size_t v = 0; v < order.point.size(); ++v) {
+      reordered[v] = valid[order.point[v]];
+      std::copy_n(&raw[3 * std::size_t(order.point[v])], 3, &reordered_raw[3 * v]);
     }
+    for (const auto& c : order.copies)
+      duplicates_.emplace_back(valid[c.first], c.second);
+    valid.swap(reordered);
+    raw.swap(reordered_raw);
+    tie_rank = std::move(order.rank);
   }
   const std::size_t n = valid.size();
   if (n == 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point.\n");
     return false;
   }
-  if (n > std::numeric_limits<std::uint32_t>::max() / 64) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] too many points (%zu).\n", n);
-    return false;
-  }
-
-  // Graph vertices are numbered along a Morton (Z-order) curve: every phase then reads its
-  // neighbours from nearby memory (2-4x faster on large clouds than the input order). Results
-  // are reported per input point; segments are numbered by their smallest input index.
-  // Ties in the centrality go by input order, so the numbering does not change results.
-  std::vector<std::uint32_t> tie_rank;
-  {
-    std::vector<float> raw(3 * n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const PointT& p = (*input_)[valid[i]];
-      raw[3 * i + 0] = p.x;
-      raw[3 * i + 1] = p.y;
-      raw[3 * i + 2] = p.z;
-    }
-    tie_rank = pcl_ncut_seg::mortonOrder(raw.data(), n); // valid is sorted: rank = position
-    std::vector<int> reordered(n);
-    std::vector<std::uint32_t> vertex_of(n); // sorted position -> Morton vertex
-    for (std::size_t i = 0; i < n; ++i) {
-      reordered[i] = valid[tie_rank[i]];
-      vertex_of[tie_rank[i]] = static_cast<std::uint32_t>(i);
-    }
-    valid.swap(reordered);
-    for (auto& d : duplicates_)
-      d.second = vertex_of[d.second];
-  }
 
   // Coordinates relative to the centroid, in double first, so that a model far from the
   // origin keeps its float precision.
+  // (raw holds the input's x, y, z in vertex order.)
   double c[3] = {0, 0, 0};
-  for (int idx : valid) {
-    c[0] += (*input_)[idx].x;
-    c[1] += (*input_)[idx].y;
-    c[2] += (*input_)[idx].z;
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d)
+      c[d] += raw[3 * i + d];
   for (double& v : c)
     v /= static_cast<double>(n);
   std::vector<float> xyz(3 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const PointT& p = (*input_)[valid[i]];
-    xyz[3 * i + 0] = static_cast<float>(p.x - c[0]);
-    xyz[3 * i + 1] = static_cast<float>(p.y - c[1]);
-    xyz[3 * i + 2] = static_cast<float>(p.z - c[2]);
-  }
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    xyz[i] = static_cast<float>(raw[i] - c[i % 3]);
 
   if (progress_)
     progress_("kNN", 0.0);
@@ -510,18 +479,18 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
              n, k, k_);
   std::vector<std::uint32_t> knn(n * std::max<std::size_t>(k, 1),
                                  std::numeric_limits<std::uint32_t>::max());
-  if (k > 0) {
-    // A search method we create is dropped after use: its tree is no use to the later phases.
-    const bool own_search = !search_;
-    if (own_search)
-      search_.reset(new pcl::search::KdTree<PointT>(false));
+  const int threads = ncut_detail::usableThreads(num_threads_);
+  if (k > 0 && !search_) {
+    // The default: FLANN's kd-tree as pcl::search::KdTree builds it, over a compact copy of
+    // the points in vertex order, queried in parallel without PCL's per-query wrapping.
+    pcl_ncut_seg::kNearestNeighbours(raw.data(), n, k, threads, knn.data());
+  } else if (k > 0) {
     pcl::IndicesPtr valid_ptr(new pcl::Indices(valid.begin(), valid.end()));
     search_->setInputCloud(input_, valid_ptr);
     std::vector<std::int64_t> local(cloud_size, -1);
     for (std::size_t i = 0; i < n; ++i)
       local[valid[i]] = static_cast<std::int64_t>(i);
     // Queries in vertex (Morton) order visit the search tree coherently.
-    const int threads = ncut_detail::usableThreads(num_threads_);
 #pragma omp parallel num_threads(threads)
     {
       pcl::Indices nn;
@@ -544,10 +513,10 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
         }
       }
     }
-    if (own_search)
-      search_.reset();
   }
-  pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+  std::vector<float>().swap(raw);
+  pcl_ncut_seg::CsrGraph graph =
+      pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k, threads);
   std::vector<std::uint32_t>().swap(knn); // free before the expensive stage
   if (bridge_gap_ > 0.0)
     pcl_ncut_seg::bridgeComponents(graph, xyz.data(), bridge_gap_);
