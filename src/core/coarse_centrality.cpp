@@ -65,6 +65,12 @@ std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
   const std::size_t min_block = 32 * static_cast<std::size_t>(threads);
   const std::size_t max_block = 8192 * static_cast<std::size_t>(threads);
   std::size_t block = 128 * static_cast<std::size_t>(threads);
+  // A block runs on several threads only when its searches are worth a synchronisation: on a
+  // cloud little larger than the number of representatives the balls hold a few vertices,
+  // and hundreds of tiny blocks would each wait at a barrier (a time slice each when another
+  // process holds a core). Estimated from the vertices the previous block's searches reached.
+  constexpr double kMinParallelVisits = 65536.0;
+  double visits_per_search = kMinParallelVisits; // the first block runs in parallel
   std::vector<std::vector<std::uint32_t>> balls;
   for (std::size_t next = 0; next < n;) {
     candidates.clear();
@@ -74,11 +80,16 @@ std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
     const auto count = static_cast<std::ptrdiff_t>(candidates.size());
     if (balls.size() < candidates.size())
       balls.resize(candidates.size());
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (count > 1)
+    const bool parallel =
+        count > 1 && static_cast<double>(count) * visits_per_search >= kMinParallelVisits;
+    std::size_t visits = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) if (parallel) \
+    reduction(+ : visits)
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       BallSearch& s = searches[threadId()];
       s.touched.clear();
       s.search.run(candidates[i], s.dist.data(), bound.data(), &s.touched);
+      visits += s.touched.size();
       std::size_t inside = 0;
       for (std::uint32_t u : s.touched) {
         if (s.dist[u] <= radius)
@@ -87,6 +98,8 @@ std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
       }
       balls[i].assign(s.touched.begin(), s.touched.begin() + inside);
     }
+    if (count > 0)
+      visits_per_search = static_cast<double>(visits) / static_cast<double>(count);
     std::ptrdiff_t in_vain = 0;
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       if (covered[candidates[i]]) {
