@@ -59,12 +59,14 @@ struct Work {
       children[par].push_back(s);
     return s;
   }
-  std::vector<std::uint8_t> dirty; ///< per supernode, points gained or lost since last checked
+  /// Per supernode: may be disconnected, so step 3 must search it. A supernode that loses
+  /// points may split; one that gains points next to its own stays connected, so only the
+  /// callers that add points not known to touch it set this for the gaining side.
+  std::vector<std::uint8_t> dirty;
 
   void addPoint(std::uint32_t s, std::uint32_t p, const std::vector<float>& f, double a) {
     if (label[p] != kNone)
       dirty[label[p]] = 1;
-    dirty[s] = 1;
     label[p] = s;
     points[s].push_back(p);
     area[s] += a;
@@ -88,6 +90,7 @@ struct Work {
                  const std::vector<double>& point_area) {
     for (std::uint32_t p : points[s])
       addPoint(t, p, f, point_area[p]);
+    dirty[t] = 1; // s's points need not touch t's
     points[s].clear();
     if (parent[s] == t) {
       replaceChild(t, s, children[s]);
@@ -179,6 +182,10 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   }
   for (std::uint32_t p = 0; p < n; ++p)
     w.addPoint(input.label[p], p, f, point_area[p]);
+  // Sec. 4.2 grows a supernode without children only from points next to its own (nothing
+  // is redirected into it), so it starts connected: step 3 searches it only once it changes.
+  for (std::size_t s = 0; s < m; ++s)
+    w.dirty[s] = w.children[s].empty() ? 0 : 1;
 
   // Thresholds from the supernodes before refinement (footnotes 4 and 5).
   double total_area = 0.0;
@@ -199,6 +206,8 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   std::vector<std::uint32_t> by_f;
   std::vector<std::uint32_t> slot(n, kNone); // merge-up: position of a point in by_f
   std::vector<std::uint32_t> kid_index;      // merge-up: position of a supernode in kids
+  std::vector<std::uint32_t> edge_kid;       // merge-up: per edge of a point, see below
+  constexpr std::uint32_t kSelf = kNone - 1; // merge-up: edge_kid of a neighbour still in s
   // Steps 1-3 repeat until nothing changes (a few rounds at most): the kept region of a
   // split supernode is re-tested too.
   for (int round = 0; round < 8; ++round) {
@@ -251,33 +260,40 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
           const std::uint64_t pass = turn >> 32;
           const auto i = static_cast<std::uint32_t>(turn);
           const std::uint32_t p = by_f[i];
-          // The child most neighbours belong to, ties to the first in kids.
-          std::uint32_t best = kNone, best_count = 0;
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-            const std::uint32_t t = w.label[graph.targets[e]];
-            if (t < kid_index.size() && kid_index[t] != kNone)
-              ++kid_count[kid_index[t]];
+          // One read of the neighbours' labels (the memory-bound part), kept in edge_kid:
+          // a neighbour's position in kids, kSelf when it is still in s, kNone otherwise.
+          // Assigning p changes only p's label, so the cached labels stay exact below.
+          const std::uint32_t b = graph.offsets[p], deg = graph.offsets[p + 1] - b;
+          edge_kid.resize(deg);
+          for (std::uint32_t k = 0; k < deg; ++k) {
+            const std::uint32_t t = w.label[graph.targets[b + k]];
+            const std::uint32_t j = t < kid_index.size() ? kid_index[t] : kNone;
+            edge_kid[k] = t == s ? kSelf : j;
+            if (j != kNone)
+              ++kid_count[j];
           }
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-            const std::uint32_t t = w.label[graph.targets[e]];
-            if (t >= kid_index.size() || kid_index[t] == kNone)
+          // The child most neighbours belong to, ties to the first in kids.
+          std::uint32_t best_j = kNone, best_count = 0;
+          for (std::uint32_t k = 0; k < deg; ++k) {
+            const std::uint32_t j = edge_kid[k];
+            if (j >= kids.size())
               continue;
-            const std::uint32_t j = kid_index[t], c = kid_count[j];
-            if (c > best_count || (c == best_count && j < kid_index[best])) {
-              best = t;
+            const std::uint32_t c = kid_count[j];
+            if (c > best_count || (c == best_count && j < best_j)) {
+              best_j = j;
               best_count = c;
             }
           }
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-            const std::uint32_t t = w.label[graph.targets[e]];
-            if (t < kid_index.size() && kid_index[t] != kNone)
-              kid_count[kid_index[t]] = 0;
-          }
-          w.addPoint(best, p, f, point_area[p]); // a child neighbour never leaves: best is set
+          for (std::uint32_t k = 0; k < deg; ++k)
+            if (edge_kid[k] < kids.size())
+              kid_count[edge_kid[k]] = 0;
+          const std::uint32_t best = kids[best_j];
+          // A child neighbour never leaves: best is set, and stays connected.
+          w.addPoint(best, p, f, point_area[p]);
           state[i] = 2;
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-            const std::uint32_t q = graph.targets[e];
-            if (w.label[q] != s || state[slot[q]] != 0)
+          for (std::uint32_t k = 0; k < deg; ++k) {
+            const std::uint32_t q = graph.targets[b + k];
+            if (edge_kid[k] != kSelf || state[slot[q]] != 0)
               continue;
             state[slot[q]] = 1;
             turns.push(((slot[q] > i ? pass : pass + 1) << 32) | slot[q]);
@@ -298,6 +314,8 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
             largest = kid;
         for (std::uint32_t p : pending)
           w.addPoint(largest, p, f, point_area[p]);
+        if (!pending.empty())
+          w.dirty[largest] = 1;
         w.replaceChild(w.parent[s], s, kids);
         if (w.parent[s] == kNone)
           for (std::uint32_t kid : kids)
@@ -320,7 +338,7 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
     std::vector<std::uint32_t> region(n, kNone);
     const std::size_t before_regions = w.alive.size();
     for (std::uint32_t s = 0; s < before_regions; ++s) {
-      // Only a supernode whose points changed can have split since it was last checked.
+      // Only a supernode marked dirty can be disconnected (see Work::dirty): most are not.
       if (!w.alive[s] || w.points[s].empty() || !w.dirty[s])
         continue;
       w.dirty[s] = 0;
@@ -376,7 +394,7 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
         const std::uint32_t t = (area < small_area || hi - lo < skinny_height)
                                     ? w.bestNeighbour(graph, regions[r], s)
                                     : kNone;
-        if (t != kNone) {
+        if (t != kNone) { // t shares edges with the region: t stays connected if it was
           for (std::uint32_t p : regions[r])
             w.addPoint(t, p, f, point_area[p]);
         } else {

@@ -47,6 +47,8 @@ struct RefinementParams {
  *     shares most kNN edges with.
  * Thresholds are taken from the supernodes before refinement. Output ids are compact and
  * numbered in order of the first point (by index) of each supernode.
+ * \param[in] input supernodes as extractSupernodes() returns them, where one without children
+ *            is connected in graph (step 3 does not search those until they change).
  */
 Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
                             const std::vector<float>& radii, const Supernodes& input,
