@@ -68,8 +68,9 @@ std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
   // A block runs on several threads only when its searches are worth a synchronisation: on a
   // cloud little larger than the number of representatives the balls hold a few vertices,
   // and hundreds of tiny blocks would each wait at a barrier (a time slice each when another
-  // process holds a core). Estimated from the vertices the previous block's searches reached.
-  constexpr double kMinParallelVisits = 65536.0;
+  // process holds a core). Estimated from the vertices the previous block's searches reached;
+  // 8192 visits are about 0.1 ms of work (measured: 1.95x on two threads at 1M points).
+  constexpr double kMinParallelVisits = 8192.0;
   double visits_per_search = kMinParallelVisits; // the first block runs in parallel
   std::vector<std::vector<std::uint32_t>> balls;
   for (std::size_t next = 0; next < n;) {
