@@ -1,6 +1,7 @@
 // Sec. 4.1: farthest-point samples on graph distance and the mean geodesic distance, eq. (1).
 #include <pcl_ncut_seg/core/centrality.h>
 #include <pcl_ncut_seg/core/shortest_paths.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <boost/graph/compressed_sparse_row_graph.hpp>
 #include <boost/graph/dijkstra_shortest_paths_no_color_map.hpp>
@@ -172,16 +173,8 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
   // Steps 5a-b: full searches from every sample, summed in fixed point so that the sum does
   // not depend on the order, hence not on the number of threads. The calling thread chooses
   // the samples first; the others search from those already chosen meanwhile.
-  int threads = 1;
-#ifdef _OPENMP
-  // More threads than processors would only cost memory (one distance array each).
-  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
-  threads = num_threads > 0 ? static_cast<int>(std::min<unsigned>(num_threads, usable))
-                            : omp_get_max_threads();
-#else
-  (void)num_threads;
-#endif
-  threads = std::max(1, std::min<int>(threads, static_cast<int>(num_tasks)));
+  const int threads =
+      std::max(1, std::min<int>(usableThreads(num_threads), static_cast<int>(num_tasks)));
   std::vector<std::vector<std::int64_t>> partial(threads);
   std::atomic<std::size_t> next{0}, done{0};
 #pragma omp parallel num_threads(threads)

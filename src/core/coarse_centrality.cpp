@@ -1,6 +1,7 @@
 // Sec. 4.1's centrality on a coarse graph of representatives, carried back to every point.
 #include <pcl_ncut_seg/core/coarse_centrality.h>
 #include <pcl_ncut_seg/core/shortest_paths.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,18 +16,6 @@ namespace pcl_ncut_seg {
 namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr std::uint32_t kNoSource = std::numeric_limits<std::uint32_t>::max();
-
-/// The threads for a request (0 = all cores).
-int threadCount(unsigned requested) {
-#ifdef _OPENMP
-  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
-  return requested > 0 ? static_cast<int>(std::min<unsigned>(requested, usable))
-                       : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
 
 int threadId() {
 #ifdef _OPENMP
@@ -249,7 +238,7 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   const double mean_edge = g.lengths.empty() ? 1.0 : sum / static_cast<double>(g.lengths.size());
   double radius = mean_edge * std::sqrt(static_cast<double>(n) /
                                         (9.2 * static_cast<double>(num_representatives)));
-  const int threads = threadCount(num_threads);
+  const int threads = usableThreads(num_threads);
   std::vector<BallSearch> searches;
   for (int t = 0; t < threads; ++t)
     searches.emplace_back(g);

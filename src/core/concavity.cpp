@@ -1,5 +1,6 @@
 // Concave creases between supernodes (an extension of Sec. 5.1).
 #include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <Eigen/Dense>
 
@@ -64,17 +65,6 @@ bool fitPlane(const CsrGraph& graph, const float* xyz, std::size_t p, float* nor
   return true;
 }
 
-int threadsFor(unsigned requested) {
-#ifdef _OPENMP
-  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
-  return requested > 0 ? static_cast<int>(std::min<unsigned>(requested, usable))
-                       : omp_get_max_threads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
-
 /// Bucket queue for Prim's tree: the cost 1 - |n_p . n_q| in [0, 1], rounded down to a multiple
 /// of 1/1024, is the bucket. (On the benchmark's models this orients every point as the tree
 /// over exact costs does; steps of 1/64 turned parts of a rotor the other way.) Each bucket is
@@ -135,7 +125,7 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
   std::vector<float> normals(3 * n, 0.0f);
   // The plane fits are independent: the same result for any number of threads.
   const auto sn = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static, 4096) num_threads(threadsFor(num_threads))
+#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
   for (std::int64_t p = 0; p < sn; ++p)
     fitPlane(graph, xyz, static_cast<std::size_t>(p), &normals[3 * p]);
 

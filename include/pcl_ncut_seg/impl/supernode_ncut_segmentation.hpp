@@ -15,6 +15,7 @@
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/morton.h>
 #include <pcl_ncut_seg/core/knn.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,34 +23,6 @@
 #include <iterator>
 #include <limits>
 #include <tuple>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
-namespace pcl {
-namespace ncut_detail {
-/// Threads for "all cores" (1 without OpenMP).
-inline int maxThreads() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-/// The threads to use for a request (0 = all cores): never more than the processors, which
-/// would only cost memory.
-inline int usableThreads(unsigned requested) {
-#ifdef _OPENMP
-  const int usable = std::max(omp_get_num_procs(), omp_get_max_threads());
-  return requested > 0 ? static_cast<int>(std::min<unsigned>(requested, usable)) : maxThreads();
-#else
-  (void)requested;
-  return 1;
-#endif
-}
-} // namespace ncut_detail
-} // namespace pcl
 
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
@@ -479,7 +452,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
              n, k, k_);
   std::vector<std::uint32_t> knn(n * std::max<std::size_t>(k, 1),
                                  std::numeric_limits<std::uint32_t>::max());
-  const int threads = ncut_detail::usableThreads(num_threads_);
+  const int threads = pcl_ncut_seg::usableThreads(num_threads_);
   if (k > 0 && !search_) {
     // The default: FLANN's kd-tree as pcl::search::KdTree builds it, over a compact copy of
     // the points in vertex order, queried in parallel without PCL's per-query wrapping.
