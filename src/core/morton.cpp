@@ -1,5 +1,6 @@
 // Morton (Z-order) codes: a cache-friendly order for kNN queries and graph searches.
 #include <pcl_ncut_seg/core/morton.h>
+#include <pcl_ncut_seg/core/radix_sort.h>
 
 #include <algorithm>
 #include <cmath>
@@ -41,33 +42,12 @@ std::vector<std::uint32_t> mortonCodes(const float* xyz, std::size_t n) {
 }
 
 std::vector<std::uint32_t> mortonOrder(const float* xyz, std::size_t n) {
-  const std::vector<std::uint32_t> code = mortonCodes(xyz, n);
-  std::vector<std::uint64_t> key(n);
-  for (std::size_t i = 0; i < n; ++i)
-    key[i] = (static_cast<std::uint64_t>(code[i]) << 32) | i;
-  std::sort(key.begin(), key.end());
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i)
-    order[i] = static_cast<std::uint32_t>(key[i]);
-  return order;
+  return stableOrderByKey(mortonCodes(xyz, n)); // ties in index order
 }
 
 DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n) {
   const std::vector<std::uint32_t> code = mortonCodes(xyz, n);
-  // LSD radix sort on the 30-bit code, 10 bits a pass; stable, so ties stay in index order.
-  std::vector<std::uint32_t> order(n), other(n);
-  for (std::uint32_t i = 0; i < n; ++i)
-    order[i] = i;
-  for (int shift = 0; shift < 30; shift += 10) {
-    std::vector<std::size_t> start(1025, 0);
-    for (std::uint32_t i : order)
-      ++start[((code[i] >> shift) & 1023u) + 1];
-    for (std::size_t b = 0; b < 1024; ++b)
-      start[b + 1] += start[b];
-    for (std::uint32_t i : order)
-      other[start[(code[i] >> shift) & 1023u]++] = i;
-    order.swap(other);
-  }
+  std::vector<std::uint32_t> order = stableOrderByKey(code); // ties stay in index order
   // Within a cell, equal positions: sort the cell's points by (x, y, z, index).
   std::vector<std::uint32_t> first(n); // per point: the first point at its position
   std::vector<std::uint32_t> cell;

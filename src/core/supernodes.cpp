@@ -1,6 +1,7 @@
 // Sec. 4.2: supernodes from the discrete gradient flow, created anew at saddle points, with
 // feature-crossing edges removed by the fraction rule (b).
 #include <pcl_ncut_seg/core/supernodes.h>
+#include <pcl_ncut_seg/core/radix_sort.h>
 
 #include <algorithm>
 #include <cstring>
@@ -8,8 +9,8 @@
 
 namespace pcl_ncut_seg {
 namespace {
-/// The vertices by descending f, ties by ascending index: a stable LSD radix sort (11 bits a
-/// pass) on a key that orders floats as numbers (-0 counts as 0), linear in n.
+/// The vertices by descending f, ties by ascending index: a stable radix sort on a key that
+/// orders floats as numbers (-0 counts as 0), linear in n.
 std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
   const std::size_t n = f.size();
   std::vector<std::uint32_t> key(n);
@@ -20,19 +21,7 @@ std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
     bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
     key[i] = ~bits;                                             // descending
   }
-  std::vector<std::uint32_t> order(n), other(n);
-  std::iota(order.begin(), order.end(), 0u);
-  for (int shift = 0; shift < 32; shift += 11) {
-    std::vector<std::size_t> start(2049, 0);
-    for (std::uint32_t i : order)
-      ++start[((key[i] >> shift) & 2047u) + 1];
-    for (std::size_t b = 0; b < 2048; ++b)
-      start[b + 1] += start[b];
-    for (std::uint32_t i : order)
-      other[start[(key[i] >> shift) & 2047u]++] = i;
-    order.swap(other);
-  }
-  return order;
+  return stableOrderByKey(key);
 }
 } // namespace
 
