@@ -13,6 +13,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "mesh_sampling.h"
+#include "peak_memory.h"
 
 #include <pcl/segmentation/lccp_segmentation.h>
 #include <pcl/segmentation/supervoxel_clustering.h>
@@ -33,6 +34,8 @@
 #include <vector>
 
 namespace {
+using pcl_ncut_seg_bench::procStatusBytes;
+using pcl_ncut_seg_bench::startPeakMemory;
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
@@ -63,25 +66,6 @@ const std::vector<Row> kQuickRows = {{"hand_c", "cgal-hand.off", 4000},
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// A field of /proc/self/status in bytes (VmRSS, VmHWM), or 0.
-std::size_t procStatusBytes(const char* field) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  const std::size_t len = std::strlen(field);
-  while (std::getline(in, line))
-    if (line.compare(0, len, field) == 0 && line.size() > len && line[len] == ':')
-      return std::strtoull(line.c_str() + len + 1, nullptr, 10) * 1024;
-  return 0;
-}
-
-/// Start measuring peak memory from here: return freed heap to the system and reset the
-/// kernel's high-water mark (Linux >= 4.0). Returns the resident size now.
-std::size_t startPeakMemory() {
-  malloc_trim(0);
-  std::ofstream("/proc/self/clear_refs") << "5";
-  return procStatusBytes("VmRSS");
 }
 
 Cloud::Ptr sampleModel(const std::string& path, std::size_t n, double* diagonal) {

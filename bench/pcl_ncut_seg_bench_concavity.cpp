@@ -12,6 +12,7 @@
 #include <pcl_ncut_seg/core/pipeline.h>
 
 #include "mesh_sampling.h"
+#include "peak_memory.h"
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
@@ -33,6 +34,8 @@
 #include <string>
 
 namespace {
+using pcl_ncut_seg_bench::procStatusBytes;
+using pcl_ncut_seg_bench::startPeakMemory;
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -43,22 +46,6 @@ double cpuNow() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-std::size_t procStatusBytes(const char* field) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  const std::size_t len = std::strlen(field);
-  while (std::getline(in, line))
-    if (line.compare(0, len, field) == 0 && line.size() > len && line[len] == ':')
-      return std::strtoull(line.c_str() + len + 1, nullptr, 10) * 1024;
-  return 0;
-}
-
-std::size_t startPeakMemory() {
-  malloc_trim(0);
-  std::ofstream("/proc/self/clear_refs") << "5";
-  return procStatusBytes("VmRSS");
 }
 
 /// Points in Morton order, as the segmenter orders them.
