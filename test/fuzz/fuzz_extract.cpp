@@ -10,6 +10,9 @@
  *   - the labelled cloud agrees with the segments;
  *   - a second extract() after changing only cut parameters (the cheap path) is a partition too;
  *   - the same labels with another number of threads.
+ * The (up to two) bytes after the points choose the options beyond the paper (bridging, concave
+ * creases, flat patches, largest-gap stopping, joining touching supernodes, exact centrality,
+ * CAD mode); zeros, as in most of the corpus, keep the defaults.
  * Built with libFuzzer by -DPCL_NCUT_SEG_BUILD_FUZZERS=ON (clang); replay_main.cpp runs a
  * corpus through it without libFuzzer (the FuzzCorpus test).
  */
@@ -119,6 +122,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     cloud->push_back(pcl::PointXYZ(xyz[0], xyz[1], xyz[2]));
   }
   const std::size_t n = cloud->size();
+  const std::uint8_t options1 = in.next(), options2 = in.next();
 
   // Indices (flag 0x20): every point whose position is odd or divisible by 3, some twice,
   // and one out of range with flag 0x40.
@@ -167,6 +171,33 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     seg.setNormalizeWidth(flags & 2);
     seg.setConnectAdjacentTrees(flags & 4);
     seg.setNumberOfThreads(num_threads);
+    // Options beyond the paper: 2 bits or 1 bit each, 0 keeps the default.
+    static const double kRadii[] = {0, 0, 0.5, 1e3}, kWeight[] = {0, 0, 0.01, 1e3},
+                        kElongation[] = {0, 0, 1e-3, 10}, kFloor[] = {0, 1e-300, 0.5, 1e300},
+                        kShare[] = {0, 0, 1, 0};
+    static const int kMaxSegments[] = {0, 1, 2, INT_MAX};
+    if (options1 & 3)
+      seg.setBridgeGap(kRadii[options1 & 3]);
+    if ((options1 >> 2) & 3)
+      seg.setConcavityWeight(kWeight[(options1 >> 2) & 3]);
+    if ((options1 >> 4) & 3)
+      seg.setFlatElongation(kElongation[(options1 >> 4) & 3]);
+    if (options1 & 0x40)
+      seg.setLargestGapStopping(false);
+    if (options1 & 0x80)
+      seg.setCadMode(true);
+    if (options2 & 3)
+      seg.setMaxSegments(kMaxSegments[options2 & 3]);
+    if ((options2 >> 2) & 3)
+      seg.setGapFloor(kFloor[(options2 >> 2) & 3]);
+    if (((options2 >> 4) & 3) == 3)
+      seg.setConnectAllAdjacent(false);
+    else if ((options2 >> 4) & 3)
+      seg.setAdjacentShare(kShare[(options2 >> 4) & 3]);
+    if (options2 & 0x40)
+      seg.setMinSegmentFraction(0.25);
+    if (options2 & 0x80)
+      seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   };
 
   Seg seg;
@@ -202,6 +233,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   seg.setNumberOfSegments(segments_wanted > 0 ? 0 : 3);
   seg.setThreshold(kThreshold[(flags >> 5) % 8]);
   seg.setAlpha2(kPositive[flags % 9]);
+  seg.setFlatElongation(options1 & 0x20 ? 0.0 : 0.2);
   seg.extract(segments);
   FUZZ_CHECK(!segments.empty());
   checkPartition(segments, wanted);

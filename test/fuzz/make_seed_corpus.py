@@ -2,7 +2,8 @@
 """Writes the hand-made seed inputs of test/fuzz/corpus (the fuzzer adds its own beside them).
 Layout, as fuzz_extract.cpp reads it: 14 parameter bytes (flags, k, samples, crossing, area,
 height, beta, alpha1, alpha2, threshold, segments, splits, threads, scale), then 3 signed bytes
-per point (-128 = NaN, 127 = infinity)."""
+per point (-128 = NaN, 127 = infinity), then up to two bytes of options beyond the paper (see
+fuzz_extract.cpp; none or zeros keep the defaults)."""
 import math
 import os
 import struct
@@ -50,6 +51,13 @@ seeds = {
     "all_nan": params() + pts([(-128, -128, -128)] * 20),
     "huge_splits_far": params(flags=0x17, splits=255, scale=12) + pts(sphere(100, 50)),
     "tiny_scale": params(scale=0, threads=2) + pts(sphere(100, 50)),
+    # Options beyond the paper: CAD mode; every option at its extreme with exact centrality;
+    # every option off (the paper).
+    "sphere_cad": params() + pts(sphere(150, 60)) + bytes([0x80]),
+    "dumbbell_extremes": params(flags=0x07, segments=0) + pts(
+        sphere(90, 30, (-70, 0, 0)) + sphere(90, 30, (70, 0, 0))) + bytes([0x3F, 0xC2]),
+    "two_spheres_paper": params(flags=0x07, threads=2) + pts(
+        sphere(80, 20, (-90, 0, 0)) + sphere(80, 20, (90, 0, 0))) + bytes([0x55, 0x30]),
 }
 os.makedirs(HERE, exist_ok=True)
 for name, data in seeds.items():
