@@ -176,8 +176,9 @@ TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
       }
       std::cout << "seed " << seed << ", flat " << flat << ": " << count[0]
                 << " segments with the largest gap, " << count[1] << " with the short-cut rule\n";
-      if (flat == 0.0)
+      if (flat == 0.0) {
         EXPECT_LT(count[1], count[0]) << "seed " << seed;
+      }
     }
   }
 }
