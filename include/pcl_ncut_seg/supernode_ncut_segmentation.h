@@ -138,8 +138,9 @@ public:
 
   /** \brief Automatic stopping rule (with the threshold): split the part with the lowest NCut
    * first while its NCut is at most the threshold and at most getMaxSegments() parts exist,
-   * then keep the splits up to the largest relative jump in NCut (default true; false: the
-   * paper's recursive bisection while NCut <= threshold). Ignored with a number of segments. */
+   * then keep the splits up to the largest relative jump in NCut, or by the short-cut rule
+   * (setNeckExponent(), on by default) (default true; false: the paper's recursive bisection
+   * while NCut <= threshold). Ignored with a number of segments. */
   void setLargestGapStopping(bool enable);
   bool getLargestGapStopping() const { return cut_.largest_gap; }
 
