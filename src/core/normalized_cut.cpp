@@ -280,8 +280,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
       }
     }
     if (short_cut) // the short-cut rule instead of the largest jump (core/short_cut.h)
-      keep = shortCutKeep(ncuts, necks, params.neck_exponent, params.neck_bound,
-                          params.neck_floor);
+      keep = shortCutKeep(ncuts, necks, params.neck_exponent, params.neck_bound, params.neck_floor);
     if (keep < ncuts.size()) {
       // Rebuild with exactly `keep` splits: the best-first order is deterministic.
       std::vector<std::uint32_t> root = std::move(h.nodes[0].vertices);

@@ -247,8 +247,7 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNeckExponent(double exponent) {
   cut_.neck_exponent = exponent;
 }
 
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setNeckBound(double bound) {
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::setNeckBound(double bound) {
   if (!(bound > 0.0) || !std::isfinite(bound)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNeckBound] bound must be finite and > 0, got "
               "%g; keeping %g.\n",
