@@ -567,6 +567,12 @@ std::vector<ParamCase> validEdges() {
   for (double x : {dmin, dmax})
     v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
                  [x](const Seg& s) { return s.getGapFloor() == x; }});
+  for (double x : {0.0, dmax})
+    v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
+                 [x](const Seg& s) { return s.getNeckExponent() == x; }});
+  for (double x : {dmin, dmax})
+    v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
+                 [x](const Seg& s) { return s.getNeckBound() == x; }});
   for (double x : {0.0, 1.0})
     v.push_back({"setAdjacentShare", [x](Seg& s) { s.setAdjacentShare(x); },
                  [x](const Seg& s) { return s.getAdjacentShare() == x; }});
@@ -633,6 +639,12 @@ std::vector<ParamCase> justPast() {
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
                  [](const Seg& s) { return s.getGapFloor() != Seg().getGapFloor(); }});
+  for (double x : {-dmin, dinf, dnan})
+    v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
+                 [](const Seg& s) { return s.getNeckExponent() != Seg().getNeckExponent(); }});
+  for (double x : {0.0, -dmin, dinf, dnan})
+    v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
+                 [](const Seg& s) { return s.getNeckBound() != Seg().getNeckBound(); }});
   for (double x : {-dmin, std::nextafter(1.0, 2.0), dinf, dnan})
     v.push_back({"setAdjacentShare", [x](Seg& s) { s.setAdjacentShare(x); },
                  [](const Seg& s) { return s.getAdjacentShare() != Seg().getAdjacentShare(); }});

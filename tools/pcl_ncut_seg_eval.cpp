@@ -63,6 +63,8 @@ struct Options {
   double bridge_gap = -1;
   double concavity = -1;
   double flat = -1;
+  double neck = -1;       ///< setNeckExponent
+  double neck_bound = -1; ///< setNeckBound
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -94,6 +96,8 @@ void printHelp() {
          "  -bridge F         setBridgeGap (default: the library's default)\n"
          "  -concavity W      setConcavityWeight (default: the library's default)\n"
          "  -flat E           setFlatElongation (default: the library's default)\n"
+         "  -neck W           setNeckExponent, 0 = largest jump (default: the library's)\n"
+         "  -neckbound K      setNeckBound (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -197,6 +201,10 @@ Options parseOptions(int argc, char** argv) {
       o.flat = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
+    } else if (a == "-neck") {
+      o.neck = parseNumber(a, v);
+    } else if (a == "-neckbound") {
+      o.neck_bound = parseNumber(a, v);
     } else if (a == "-gapfloor") {
       o.gap_floor = parseNumber(a, v);
     } else if (a == "-maxseg") {
@@ -263,6 +271,13 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setGapFloor(o.gap_floor);
   if (o.gap_floor >= 0 && seg.getGapFloor() != o.gap_floor)
     fail("-gapfloor needs a value > 0");
+  if (o.neck >= 0)
+    seg.setNeckExponent(o.neck);
+  if (o.neck_bound >= 0)
+    seg.setNeckBound(o.neck_bound);
+  if ((o.neck >= 0 && seg.getNeckExponent() != o.neck) ||
+      (o.neck_bound >= 0 && seg.getNeckBound() != o.neck_bound))
+    fail("-neck needs a value >= 0, -neckbound a value > 0");
   if (o.bridge_gap >= 0)
     seg.setBridgeGap(o.bridge_gap);
   if (o.concavity >= 0)
@@ -277,6 +292,7 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);
     seg.setLargestGapStopping(false);
+    seg.setNeckExponent(0.0);
     seg.setMinSegmentFraction(0.0);
   }
   if (o.paper || o.exact)

@@ -121,6 +121,7 @@ public:
     current_segments_ = segments.size();
     first_threshold_ = seg_.getThreshold();
     largest_gap_ = seg_.getLargestGapStopping();
+    short_cut_ = largest_gap_ && seg_.getNeckExponent() > 0.0;
     by_number_ = seg_.getNumberOfSegments() > 0;
     colored_ = seg_.getColoredCloud();
     return true;
@@ -158,7 +159,9 @@ public:
     if (view == View::Segments || view == View::Coarser || view == View::Finer) {
       t << "Segments: t = " << current_segments_;
       if (current_segments_ == first_segments_ && !by_number_)
-        t << (largest_gap_ ? " (largest NCut gap, NCut <= " : " (NCut threshold ")
+        t << (short_cut_     ? " (short-cut rule, NCut <= "
+              : largest_gap_ ? " (largest NCut gap, NCut <= "
+                             : " (NCut threshold ")
           << first_threshold_ << ")";
       else if (current_segments_ != first_segments_)
         t << " (hierarchy, " << (current_segments_ > first_segments_ ? "finer" : "coarser")
@@ -239,6 +242,7 @@ private:
   std::size_t first_segments_ = 0, current_segments_ = 0;
   double first_threshold_ = 0;
   bool largest_gap_ = false;
+  bool short_cut_ = false;
   bool by_number_ = false;
   bool reused_ = true;
 };

@@ -273,6 +273,13 @@ std::vector<Flag> algorithmFlags() {
                "flat patches: between two supernodes with feature height < E sqrt(feature "
                "area), eq. (9) leaves out the width ratio, >= 0; 0 = off",
                num(d.getFlatElongation()), 0),
+      realFlag("-neck_exponent", "W",
+               "short-cut stopping rule: a split's NCut is weighted by neck^W (boundary length "
+               "over sqrt of the smaller side's area), >= 0; 0 = the largest jump in NCut",
+               num(d.getNeckExponent()), 0),
+      realFlag("-neck_bound", "K",
+               "short-cut stopping rule: weighted NCut below which a split is worth making, > 0",
+               num(d.getNeckBound()), 0, 1e308, true),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -352,6 +359,10 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setConcavityWeight(flags.real("-concavity"));
   if (flags.has("-flat"))
     seg.setFlatElongation(flags.real("-flat"));
+  if (flags.has("-neck_exponent"))
+    seg.setNeckExponent(flags.real("-neck_exponent"));
+  if (flags.has("-neck_bound"))
+    seg.setNeckBound(flags.real("-neck_bound"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-min_fraction"))
@@ -365,6 +376,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);
     seg.setLargestGapStopping(false);
+    seg.setNeckExponent(0.0);
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);

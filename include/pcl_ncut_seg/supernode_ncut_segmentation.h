@@ -138,8 +138,9 @@ public:
 
   /** \brief Automatic stopping rule (with the threshold): split the part with the lowest NCut
    * first while its NCut is at most the threshold and at most getMaxSegments() parts exist,
-   * then keep the splits up to the largest relative jump in NCut (default true; false: the
-   * paper's recursive bisection while NCut <= threshold). Ignored with a number of segments. */
+   * then keep the splits up to the largest relative jump in NCut, or by the short-cut rule
+   * (setNeckExponent(), on by default) (default true; false: the paper's recursive bisection
+   * while NCut <= threshold). Ignored with a number of segments. */
   void setLargestGapStopping(bool enable);
   bool getLargestGapStopping() const { return cut_.largest_gap; }
 
@@ -152,6 +153,20 @@ public:
    * that jumps among near-zero values (e.g. 1e-9 to 1e-6) do not count; > 0 (default 0.003). */
   void setGapFloor(double floor);
   double getGapFloor() const { return cut_.gap_floor; }
+
+  /** \brief Short-cut stopping rule (with the largest-gap rule on): people cut parts off
+   * across short boundaries (a finger at its base), not around long ones (a patch of a flat
+   * wall). Each best-first split's NCut is weighted by neck^exponent, neck = the boundary's
+   * length over the square root of the smaller side's area (measured on the kNN graph), and
+   * the splits are kept up to the highest running sum of log(bound / weighted NCut), in
+   * place of the largest jump. >= 0 (default 3); 0: the largest jump. */
+  void setNeckExponent(double exponent);
+  double getNeckExponent() const { return cut_.neck_exponent; }
+
+  /** \brief Short-cut stopping rule: the weighted NCut below which a split is worth making,
+   * > 0 (default 0.25). Larger values make more segments. */
+  void setNeckBound(double bound);
+  double getNeckBound() const { return cut_.neck_bound; }
 
   /** \brief Ask for this many segments (> 0); 0 (default) uses the threshold instead. The
    * hierarchy is refined by splitting the part with the lowest NCut first. Fewer segments

@@ -1,6 +1,8 @@
 // Sec. 5.2: Shi-Malik spectral bisection, NCut of eq. (5) (corrected), recursive hierarchy.
 #include <pcl_ncut_seg/core/normalized_cut.h>
 
+#include <pcl_ncut_seg/core/short_cut.h>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -211,7 +213,7 @@ std::vector<int> Hierarchy::leaves() const {
 }
 
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
-                         const CutParams& params) {
+                         const CutParams& params, const SplitNeckFn& split_neck) {
   Hierarchy h;
   if (graph.num_vertices == 0)
     return h;
@@ -238,7 +240,8 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
   add(std::move(all), -1);
 
   // Best splits first: the leaf whose bisection has the lowest NCut (at most `cap`).
-  auto bestFirst = [&](int max_leaves, double cap, std::vector<double>* ncuts) {
+  auto bestFirst = [&](int max_leaves, double cap, std::vector<double>* ncuts,
+                       std::vector<double>* necks = nullptr) {
     for (int leaves = 1; leaves < max_leaves; ++leaves) {
       int best = -1;
       for (std::size_t i = 0; i < h.nodes.size(); ++i)
@@ -249,14 +252,18 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
         break;
       if (ncuts)
         ncuts->push_back(h.nodes[best].ncut);
+      if (necks)
+        necks->push_back(split_neck(splits[best].v1, splits[best].v2));
       split(best);
     }
   };
   if (params.num_segments > 0) {
     bestFirst(params.num_segments, std::numeric_limits<double>::infinity(), nullptr);
   } else if (params.largest_gap) {
-    std::vector<double> ncuts;
-    bestFirst(std::max(params.max_segments, 1), params.threshold, &ncuts);
+    std::vector<double> ncuts, necks;
+    const bool short_cut = params.neck_exponent > 0.0 && split_neck;
+    bestFirst(std::max(params.max_segments, 1), params.threshold, &ncuts,
+              short_cut ? &necks : nullptr);
     // Keep the first j splits, j >= 1, where the next split costs the most more than the
     // dearest kept one (log scale; NCuts below kFloor, e.g. separate components, count as
     // kFloor). The threshold stands for the split after the last one.
@@ -272,6 +279,8 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
         keep = j;
       }
     }
+    if (short_cut) // the short-cut rule instead of the largest jump (core/short_cut.h)
+      keep = shortCutKeep(ncuts, necks, params.neck_exponent, params.neck_bound, params.neck_floor);
     if (keep < ncuts.size()) {
       // Rebuild with exactly `keep` splits: the best-first order is deterministic.
       std::vector<std::uint32_t> root = std::move(h.nodes[0].vertices);

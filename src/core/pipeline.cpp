@@ -1,8 +1,10 @@
 #include <pcl_ncut_seg/core/pipeline.h>
 
 #include <pcl_ncut_seg/core/cad.h>
+#include <pcl_ncut_seg/core/short_cut.h>
 
 #include <chrono>
+#include <memory>
 
 namespace pcl_ncut_seg {
 namespace {
@@ -66,7 +68,24 @@ CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, cons
                                                   analysis.face_angle)
                          : buildSupernodeGraph(analysis.supernodes, analysis.stats, analysis.conn,
                                                similarity, &analysis.concavity);
-  r.hierarchy = buildHierarchy(r.graph, l, params);
+  SplitNeckFn split_neck;
+  std::unique_ptr<NeckMeasure> necks;
+  if (params.num_segments <= 0 && params.largest_gap && params.neck_exponent > 0.0) {
+    // The short-cut rule measures each split's boundary on the kNN graph (core/short_cut.h).
+    necks = std::make_unique<NeckMeasure>(analysis.graph, analysis.supernodes.label, l);
+    split_neck = [&necks, l](const std::vector<std::uint32_t>& v1,
+                             const std::vector<std::uint32_t>& v2) {
+      std::vector<std::int8_t> side(l, -1);
+      for (std::uint32_t v : v1)
+        if (v >= l)
+          side[v - l] = 0; // member vertex m_i = l + i stands for supernode i (footnote 6)
+      for (std::uint32_t v : v2)
+        if (v >= l)
+          side[v - l] = 1;
+      return necks->neck(side);
+    };
+  }
+  r.hierarchy = buildHierarchy(r.graph, l, params, split_neck);
   times.hierarchy = clock.lap();
 
   // Each supernode follows its member vertex m_i (footnote 6); each point its supernode.

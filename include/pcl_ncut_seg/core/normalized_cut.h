@@ -6,6 +6,7 @@
 #include <pcl_ncut_seg/core/supernode_graph.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -61,9 +62,21 @@ struct CutParams {
   bool largest_gap = true;
   int max_segments = 20; ///< upper bound on the parts for largest_gap
   double gap_floor = 3e-3; ///< largest_gap: NCuts below this count as this (no jump among them)
+  /// largest_gap, with a neck measure given to buildHierarchy(): the short-cut rule
+  /// (core/short_cut.h) replaces the largest jump: split j is worth
+  /// log(neck_bound / (max(NCut_j, neck_floor) * max(neck_j, 1)^neck_exponent)) and the
+  /// best-first splits are kept up to the highest running sum of worths. 0 = the largest gap.
+  double neck_exponent = 3.0;
+  double neck_bound = 0.25; ///< short-cut rule: a split is worth making below this weighted NCut
+  double neck_floor = 1e-3; ///< short-cut rule: NCuts below this count as this
 };
 
+/** \brief Per split of the hierarchy, its neck (core/short_cut.h): called with the two sides'
+ * vertex ids of G_s. */
+using SplitNeckFn =
+    std::function<double(const std::vector<std::uint32_t>&, const std::vector<std::uint32_t>&)>;
+
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
-                         const CutParams& params);
+                         const CutParams& params, const SplitNeckFn& split_neck = nullptr);
 
 } // namespace pcl_ncut_seg

@@ -237,6 +237,27 @@ void pcl::SupernodeNCutSegmentation<PointT>::setGapFloor(double floor) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNeckExponent(double exponent) {
+  if (!(exponent >= 0.0) || !std::isfinite(exponent)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNeckExponent] exponent must be finite and "
+              ">= 0, got %g; keeping %g.\n",
+              exponent, cut_.neck_exponent);
+    return;
+  }
+  cut_.neck_exponent = exponent;
+}
+
+template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::setNeckBound(double bound) {
+  if (!(bound > 0.0) || !std::isfinite(bound)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNeckBound] bound must be finite and > 0, got "
+              "%g; keeping %g.\n",
+              bound, cut_.neck_bound);
+    return;
+  }
+  cut_.neck_bound = bound;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
   if (segments < 0) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setNumberOfSegments] segments must be >= 0 "

@@ -1,0 +1,178 @@
+/*
+ * The short-cut stopping rule (core/short_cut.h, CutParams::neck_exponent,
+ * SupernodeNCutSegmentation::setNeckExponent / setNeckBound).
+ */
+#include <pcl_ncut_seg/core/normalized_cut.h>
+#include <pcl_ncut_seg/core/short_cut.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+// A w x h grid of points with unit spacing and 4-neighbour edges of length 1, so that every
+// point has r(p) = 1; label[p] = column of p / band.
+CsrGraph grid(int w, int h) {
+  CsrGraph g;
+  g.offsets.push_back(0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int i = 0; i < 4; ++i)
+        if (nx[i] >= 0 && nx[i] < w && ny[i] >= 0 && ny[i] < h) {
+          g.targets.push_back(static_cast<std::uint32_t>(ny[i] * w + nx[i]));
+          g.lengths.push_back(1.0f);
+        }
+      g.offsets.push_back(static_cast<std::uint32_t>(g.targets.size()));
+    }
+  return g;
+}
+
+/// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1 and the
+/// given member-member edges (as in test_cut_options).
+WeightedGraph memberGraph(std::size_t l, const std::vector<WeightedGraph::Edge>& member_edges) {
+  WeightedGraph g;
+  g.num_vertices = 2 * l;
+  for (std::uint32_t i = 0; i < l; ++i)
+    g.edges.push_back({i, static_cast<std::uint32_t>(l + i), 1.0});
+  for (auto e : member_edges)
+    g.edges.push_back(
+        {static_cast<std::uint32_t>(l + e.a), static_cast<std::uint32_t>(l + e.b), e.w});
+  return g;
+}
+
+} // namespace
+
+TEST(ShortCut, NeckIsTheBoundaryOverTheSmallerSidesSize) {
+  // 10 x 10 grid, supernode = column. Each point is a disc of radius 1 (area pi), and each
+  // boundary point adds 2 to its side's boundary length.
+  const CsrGraph g = grid(10, 10);
+  std::vector<std::uint32_t> label(100);
+  for (std::uint32_t p = 0; p < 100; ++p)
+    label[p] = p % 10;
+  const NeckMeasure measure(g, label, 10);
+  const double pi = std::acos(-1.0);
+  std::vector<std::int8_t> side(10);
+  // Halves: a boundary of 10 points on each side (length 20), 50 points a side.
+  for (int s = 0; s < 10; ++s)
+    side[s] = s < 5 ? 0 : 1;
+  EXPECT_NEAR(measure.neck(side), 20.0 / std::sqrt(50 * pi), 1e-9);
+  // A strip of 2 columns against 8: the same boundary, a smaller side: a longer neck.
+  for (int s = 0; s < 10; ++s)
+    side[s] = s < 2 ? 0 : 1;
+  EXPECT_NEAR(measure.neck(side), 20.0 / std::sqrt(20 * pi), 1e-9);
+  // Only the supernodes of the split part count: columns 0-3 split as 0-1 | 2-3.
+  for (int s = 0; s < 10; ++s)
+    side[s] = s < 2 ? 0 : (s < 4 ? 1 : -1);
+  EXPECT_NEAR(measure.neck(side), 20.0 / std::sqrt(20 * pi), 1e-9);
+  // Sides that do not touch have no boundary.
+  for (int s = 0; s < 10; ++s)
+    side[s] = s == 0 ? 0 : (s == 5 ? 1 : -1);
+  EXPECT_EQ(measure.neck(side), 0.0);
+}
+
+TEST(ShortCut, KeepsThePrefixWithTheHighestSumOfWorths) {
+  // worth = log(0.25 / max(ncut, 1e-3)) - 3 log(max(neck, 1)).
+  const std::vector<double> ncuts = {1e-5, 0.05, 0.05, 0.2};
+  EXPECT_EQ(shortCutKeep(ncuts, {1, 1, 1, 1}, 3.0, 0.25, 1e-3), 4u);
+  // A long boundary (neck 3) costs 3 log 3 = 3.3: the second split alone is not worth it,
+  // but the third makes up for it (sums 5.52, 3.83, 5.44, 5.66).
+  EXPECT_EQ(shortCutKeep(ncuts, {1, 3, 1, 1}, 3.0, 0.25, 1e-3), 4u);
+  // Two of them are not made up for (sums 5.52, 3.83, 2.14, 2.36).
+  EXPECT_EQ(shortCutKeep(ncuts, {1, 3, 3, 1}, 3.0, 0.25, 1e-3), 1u);
+  // Necks below 1 count as 1 (no bonus for a split of separate components, neck 0).
+  EXPECT_EQ(shortCutKeep(ncuts, {0, 0.1, 0.1, 0.1}, 3.0, 0.25, 1e-3), 4u);
+  // Nothing worth making.
+  EXPECT_EQ(shortCutKeep({0.5, 0.6}, {1, 1}, 3.0, 0.25, 1e-3), 0u);
+  EXPECT_EQ(shortCutKeep({}, {}, 3.0, 0.25, 1e-3), 0u);
+}
+
+TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
+  // Three tight pairs in a chain joined by weak edges: the largest gap keeps the two cheap
+  // splits (three parts).
+  const WeightedGraph g =
+      memberGraph(6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
+  CutParams p;
+  p.threshold = 2.0;
+  p.gap_floor = 1e-3;
+  p.neck_exponent = 0.0;
+  int calls = 0;
+  double neck_value = 1.0;
+  const SplitNeckFn neck = [&](const std::vector<std::uint32_t>& v1,
+                               const std::vector<std::uint32_t>& v2) {
+    ++calls;
+    EXPECT_FALSE(v1.empty());
+    EXPECT_FALSE(v2.empty());
+    return neck_value;
+  };
+  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
+  EXPECT_EQ(calls, 0) << "exponent 0: the largest gap, no neck measured";
+  p.neck_exponent = 3.0;
+  // Short boundaries: the cheap splits are worth it, the dear ones (NCut about 1) are not.
+  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
+  EXPECT_GT(calls, 0);
+  // Long boundaries (neck 10): no split is worth its boundary.
+  neck_value = 10.0;
+  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 1u);
+  // A higher bound accepts them again, and the threshold still bounds every split.
+  p.neck_bound = 1e4;
+  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 6u);
+  p.threshold = 0.01;
+  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
+  // Without a neck measure the largest gap is used.
+  p.threshold = 2.0;
+  p.neck_bound = 0.25;
+  neck_value = 10.0;
+  EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 3u);
+  // A given number of segments ignores the rule.
+  p.num_segments = 4;
+  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 4u);
+}
+
+TEST(ShortCut, SettersRejectBadValues) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_EQ(seg.getNeckExponent(), 3.0);
+  EXPECT_EQ(seg.getNeckBound(), 0.25);
+  seg.setNeckExponent(2.0);
+  seg.setNeckBound(0.5);
+  for (double bad :
+       {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    seg.setNeckExponent(bad);
+    EXPECT_EQ(seg.getNeckExponent(), 2.0);
+    seg.setNeckBound(bad);
+    EXPECT_EQ(seg.getNeckBound(), 0.5);
+  }
+  seg.setNeckBound(0.0);
+  EXPECT_EQ(seg.getNeckBound(), 0.5);
+  seg.setNeckExponent(0.0);
+  EXPECT_EQ(seg.getNeckExponent(), 0.0);
+}
+
+TEST(ShortCut, TheOptionReachesTheSegmentation) {
+  // A generated hand: the fingers are cut off across their narrow bases. A bound no split
+  // reaches leaves one segment; the exponent 0 is the largest-gap rule.
+  const auto hand = pcl_ncut_seg::test::makeHand(4000, 1);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(hand.cloud);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  const std::size_t by_default = segments.size();
+  seg.setNeckBound(1e-12);
+  seg.extract(segments);
+  EXPECT_EQ(segments.size(), 1u);
+  seg.setNeckBound(0.25);
+  seg.setNeckExponent(0.0);
+  seg.extract(segments);
+  const std::size_t largest_gap = segments.size();
+  std::cout << "generated hand (6 parts): " << by_default << " segments with the short-cut rule, "
+            << largest_gap << " with the largest gap\n";
+  EXPECT_GE(by_default, 6u);
+}
