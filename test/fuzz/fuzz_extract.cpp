@@ -12,7 +12,8 @@
  *   - the same labels with another number of threads.
  * The (up to two) bytes after the points choose the options beyond the paper (bridging, concave
  * creases, flat patches, largest-gap stopping, joining touching supernodes, exact centrality,
- * CAD mode); zeros, as in most of the corpus, keep the defaults.
+ * CAD mode), flags 0x08 and 0x80 the short-cut rule's; zeros, as in most of the corpus, keep
+ * the defaults.
  * Built with libFuzzer by -DPCL_NCUT_SEG_BUILD_FUZZERS=ON (clang); replay_main.cpp runs a
  * corpus through it without libFuzzer (the FuzzCorpus test).
  */
@@ -198,6 +199,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setMinSegmentFraction(0.25);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
+    // The short-cut stopping rule: flag 0x08 turns it off, 0x80 sets extremes.
+    if (flags & 0x08)
+      seg.setNeckExponent(0);
+    if (flags & 0x80) {
+      seg.setNeckExponent(1e3);
+      seg.setNeckBound(1e300);
+    }
   };
 
   Seg seg;
@@ -234,6 +242,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   seg.setThreshold(kThreshold[(flags >> 5) % 8]);
   seg.setAlpha2(kPositive[flags % 9]);
   seg.setFlatElongation(options1 & 0x20 ? 0.0 : 0.2);
+  seg.setNeckBound(flags & 0x08 ? 1e-3 : 0.5);
   seg.extract(segments);
   FUZZ_CHECK(!segments.empty());
   checkPartition(segments, wanted);
