@@ -63,6 +63,7 @@ struct Options {
   double bridge_gap = -1;
   double concavity = -1;
   double flat = -1;
+  double band = -1, crease = -1; ///< setBoundaryBand, setBoundaryCreaseWeight
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -94,6 +95,8 @@ void printHelp() {
          "  -bridge F         setBridgeGap (default: the library's default)\n"
          "  -concavity W      setConcavityWeight (default: the library's default)\n"
          "  -flat E           setFlatElongation (default: the library's default)\n"
+         "  -band F           setBoundaryBand (default: the library's default)\n"
+         "  -crease W         setBoundaryCreaseWeight (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -195,6 +198,10 @@ Options parseOptions(int argc, char** argv) {
       o.concavity = parseNumber(a, v);
     } else if (a == "-flat") {
       o.flat = parseNumber(a, v);
+    } else if (a == "-band") {
+      o.band = parseNumber(a, v);
+    } else if (a == "-crease") {
+      o.crease = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
     } else if (a == "-gapfloor") {
@@ -269,10 +276,17 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setConcavityWeight(o.concavity);
   if (o.flat >= 0)
     seg.setFlatElongation(o.flat);
+  if (o.band >= 0)
+    seg.setBoundaryBand(o.band);
+  if (o.band >= 0 && seg.getBoundaryBand() != o.band)
+    fail("-band needs a value in [0, 0.5]");
+  if (o.crease >= 0)
+    seg.setBoundaryCreaseWeight(o.crease);
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
+    seg.setBoundaryBand(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);
