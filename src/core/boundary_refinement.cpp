@@ -2,6 +2,19 @@
 // 2003's fuzzy cuts over the kNN graph).
 #include <pcl_ncut_seg/core/boundary_refinement.h>
 
+// GCC 12 sees a maybe-uninitialized optional inside Boost.Graph's edge iterators (a false
+// positive in the library's headers).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <boost/graph/adjacency_list.hpp>
+#include <boost/graph/boykov_kolmogorov_max_flow.hpp>
+#include <boost/range/iterator_range.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -47,132 +60,61 @@ std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
 
 namespace {
 
-/// Dinic's maximum flow on a small network (a band of points and two terminals), with arcs in
-/// CSR order; sequential, so the cut is the same whatever the number of threads.
+/// Maximum flow on a small network (a band of points and two terminals): Boost.Graph's
+/// Boykov-Kolmogorov algorithm, fast on graphs of surface neighbourhoods; sequential, so the
+/// cut is the same whatever the number of threads.
 class MaxFlow {
+  using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
+  using Graph = boost::adjacency_list<
+      boost::vecS, boost::vecS, boost::directedS,
+      boost::property<boost::vertex_color_t, boost::default_color_type,
+                      boost::property<boost::vertex_distance_t, long,
+                                      boost::property<boost::vertex_predecessor_t,
+                                                      Traits::edge_descriptor>>>,
+      boost::property<boost::edge_capacity_t, double,
+                      boost::property<boost::edge_residual_capacity_t, double,
+                                      boost::property<boost::edge_reverse_t,
+                                                      Traits::edge_descriptor>>>>;
+
 public:
-  explicit MaxFlow(std::uint32_t nodes) : nodes_(nodes) {}
+  explicit MaxFlow(std::uint32_t nodes) : graph_(nodes) {}
 
   /// An arc u -> v of capacity cap_uv and its reverse of capacity cap_vu.
   void addEdge(std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
-    pending_.push_back({u, v, cap_uv, cap_vu});
+    const auto uv = boost::add_edge(u, v, graph_).first;
+    const auto vu = boost::add_edge(v, u, graph_).first;
+    boost::put(boost::edge_capacity, graph_, uv, cap_uv);
+    boost::put(boost::edge_capacity, graph_, vu, cap_vu);
+    boost::put(boost::edge_reverse, graph_, uv, vu);
+    boost::put(boost::edge_reverse, graph_, vu, uv);
   }
 
   double run(std::uint32_t s, std::uint32_t t) {
-    build();
-    double flow = 0.0;
-    std::vector<std::uint32_t> it(nodes_);
-    std::vector<std::uint32_t> path; // arcs from s
-    while (levels(s, t)) {
-      for (std::uint32_t v = 0; v < nodes_; ++v)
-        it[v] = first_[v];
-      path.clear();
-      std::uint32_t u = s;
-      while (true) {
-        if (u == t) {
-          double b = std::numeric_limits<double>::infinity();
-          for (std::uint32_t a : path)
-            b = std::min(b, arcs_[a].cap);
-          std::size_t cut_at = path.size();
-          for (std::size_t i = 0; i < path.size(); ++i) {
-            Arc& a = arcs_[path[i]];
-            a.cap -= b;
-            arcs_[a.rev].cap += b;
-            if (cut_at == path.size() && !(a.cap > 0.0))
-              cut_at = i;
-          }
-          flow += b;
-          // Retreat to the tail of the first saturated arc.
-          path.resize(cut_at);
-          u = path.empty() ? s : arcs_[path.back()].to;
-          continue;
-        }
-        std::uint32_t& a = it[u];
-        while (a < first_[u + 1] &&
-               !(arcs_[a].cap > 0.0 && level_[arcs_[a].to] == level_[u] + 1))
-          ++a;
-        if (a < first_[u + 1]) {
-          path.push_back(a);
-          u = arcs_[a].to;
-        } else {
-          level_[u] = -1; // a dead end in this phase
-          if (path.empty())
-            break;
-          path.pop_back();
-          u = path.empty() ? s : arcs_[path.back()].to;
-          ++it[u];
-        }
-      }
-    }
-    return flow;
+    return boost::boykov_kolmogorov_max_flow(graph_, boost::vertex(s, graph_),
+                                             boost::vertex(t, graph_));
   }
 
   /// After run(): the nodes reachable from s in the residual network (the source side).
   std::vector<char> sourceSide(std::uint32_t s) const {
-    std::vector<char> seen(nodes_, 0);
+    std::vector<char> seen(boost::num_vertices(graph_), 0);
     std::vector<std::uint32_t> stack{s};
     seen[s] = 1;
     while (!stack.empty()) {
       const std::uint32_t u = stack.back();
       stack.pop_back();
-      for (std::uint32_t a = first_[u]; a < first_[u + 1]; ++a)
-        if (arcs_[a].cap > 0.0 && !seen[arcs_[a].to]) {
-          seen[arcs_[a].to] = 1;
-          stack.push_back(arcs_[a].to);
+      for (const auto& e : boost::make_iterator_range(boost::out_edges(u, graph_))) {
+        const auto v = static_cast<std::uint32_t>(boost::target(e, graph_));
+        if (boost::get(boost::edge_residual_capacity, graph_, e) > 0.0 && !seen[v]) {
+          seen[v] = 1;
+          stack.push_back(v);
         }
+      }
     }
     return seen;
   }
 
 private:
-  struct Pending {
-    std::uint32_t u, v;
-    double cap_uv, cap_vu;
-  };
-  struct Arc {
-    std::uint32_t to, rev;
-    double cap;
-  };
-
-  void build() {
-    first_.assign(nodes_ + 1, 0);
-    for (const Pending& p : pending_) {
-      ++first_[p.u + 1];
-      ++first_[p.v + 1];
-    }
-    for (std::uint32_t v = 0; v < nodes_; ++v)
-      first_[v + 1] += first_[v];
-    arcs_.resize(first_[nodes_]);
-    std::vector<std::uint32_t> fill(first_.begin(), first_.end() - 1);
-    for (const Pending& p : pending_) {
-      const std::uint32_t a = fill[p.u]++, b = fill[p.v]++;
-      arcs_[a] = {p.v, b, p.cap_uv};
-      arcs_[b] = {p.u, a, p.cap_vu};
-    }
-    std::vector<Pending>().swap(pending_);
-    level_.assign(nodes_, -1);
-  }
-
-  bool levels(std::uint32_t s, std::uint32_t t) {
-    std::fill(level_.begin(), level_.end(), -1);
-    std::vector<std::uint32_t> queue{s};
-    level_[s] = 0;
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      const std::uint32_t u = queue[head];
-      for (std::uint32_t a = first_[u]; a < first_[u + 1]; ++a)
-        if (arcs_[a].cap > 0.0 && level_[arcs_[a].to] < 0) {
-          level_[arcs_[a].to] = level_[u] + 1;
-          queue.push_back(arcs_[a].to);
-        }
-    }
-    return level_[t] >= 0;
-  }
-
-  std::uint32_t nodes_;
-  std::vector<Pending> pending_;
-  std::vector<std::uint32_t> first_;
-  std::vector<Arc> arcs_;
-  std::vector<int> level_;
+  Graph graph_;
 };
 
 } // namespace
