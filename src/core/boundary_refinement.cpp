@@ -20,6 +20,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <map>
 #include <queue>
 #include <utility>
 
@@ -119,6 +120,54 @@ private:
 
 } // namespace
 
+namespace {
+
+/// Connected components of each segment in the graph: per vertex its component (numbered in
+/// order of their smallest vertex); returns their number.
+std::uint32_t segmentComponents(const CsrGraph& graph, const std::vector<std::uint32_t>& segment,
+                                std::vector<std::uint32_t>& component) {
+  const std::size_t n = graph.numVertices();
+  constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
+  component.assign(n, kUnset);
+  std::uint32_t count = 0;
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t root = 0; root < n; ++root) {
+    if (component[root] != kUnset)
+      continue;
+    component[root] = count;
+    stack.assign(1, root);
+    while (!stack.empty()) {
+      const std::uint32_t u = stack.back();
+      stack.pop_back();
+      for (std::uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; ++e) {
+        const std::uint32_t v = graph.targets[e];
+        if (component[v] == kUnset && segment[v] == segment[root]) {
+          component[v] = count;
+          stack.push_back(v);
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+/// Per segment, its number of connected components.
+std::vector<std::size_t> componentsPerSegment(const std::vector<std::uint32_t>& segment,
+                                              const std::vector<std::uint32_t>& component,
+                                              std::uint32_t num_components,
+                                              std::size_t num_segments) {
+  std::vector<std::uint32_t> segment_of(num_components);
+  for (std::size_t p = 0; p < segment.size(); ++p)
+    segment_of[component[p]] = segment[p];
+  std::vector<std::size_t> count(num_segments, 0);
+  for (std::uint32_t c = 0; c < num_components; ++c)
+    ++count[segment_of[c]];
+  return count;
+}
+
+} // namespace
+
 std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& radii,
                              const std::vector<std::uint8_t>& crease, const BoundaryParams& params,
                              std::vector<std::uint32_t>& segment, std::size_t num_segments) {
@@ -137,49 +186,37 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
   auto area = [&](std::uint32_t p) {
     return static_cast<double>(radii[p]) * static_cast<double>(radii[p]);
   };
+  const std::vector<std::uint32_t> original = segment;
 
-  // Members, areas and kNN-graph components of each segment.
-  std::vector<std::vector<std::uint32_t>> members(num_segments);
   std::vector<double> seg_area(num_segments, 0.0);
+  std::vector<std::size_t> seg_count(num_segments, 0);
   for (std::uint32_t p = 0; p < n; ++p) {
-    members[segment[p]].push_back(p);
     seg_area[segment[p]] += area(p);
+    ++seg_count[segment[p]];
   }
-  std::vector<std::uint32_t> stamp(n, 0);
-  std::uint32_t stamp_id = 0;
-  std::vector<std::uint32_t> stack;
-  auto components = [&](std::uint32_t x) {
-    ++stamp_id;
-    std::size_t count = 0;
-    for (std::uint32_t root : members[x]) {
-      if (stamp[root] == stamp_id)
-        continue;
-      ++count;
-      stamp[root] = stamp_id;
-      stack.assign(1, root);
-      while (!stack.empty()) {
-        const std::uint32_t u = stack.back();
-        stack.pop_back();
-        for (std::uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; ++e) {
-          const std::uint32_t v = graph.targets[e];
-          if (segment[v] == x && stamp[v] != stamp_id) {
-            stamp[v] = stamp_id;
-            stack.push_back(v);
-          }
-        }
-      }
-    }
-    return count;
-  };
-  std::vector<std::size_t> num_components(num_segments);
-  for (std::uint32_t x = 0; x < num_segments; ++x)
-    num_components[x] = components(x);
+  std::vector<std::uint32_t> component;
+  const std::vector<std::size_t> components_before = componentsPerSegment(
+      segment, component, segmentComponents(graph, segment, component), num_segments);
 
-  // Touching pairs, in order of their ids.
+  // The frontier: points with a neighbour in another segment. Touching pairs, in order of ids.
+  auto onFrontier = [&](std::uint32_t p) {
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      if (segment[graph.targets[e]] != segment[p])
+        return true;
+    return false;
+  };
+  std::vector<std::uint32_t> frontier;
+  std::vector<char> in_frontier(n, 0);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   for (std::uint32_t p = 0; p < n; ++p)
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
       const std::uint32_t q = graph.targets[e];
+      if (segment[q] == segment[p])
+        continue;
+      if (!in_frontier[p]) {
+        in_frontier[p] = 1;
+        frontier.push_back(p);
+      }
       if (segment[p] < segment[q])
         pairs.emplace_back(segment[p], segment[q]);
     }
@@ -188,11 +225,12 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
 
   constexpr float kFar = std::numeric_limits<float>::infinity();
   std::vector<float> dist(n, kFar);
-  std::vector<std::int32_t> local(n, -1);
-  std::size_t changed = 0;
+  std::vector<std::int32_t> local(n, -1); // -2: settled; >= 0: index in the band
   using Item = std::pair<float, std::uint32_t>; // (distance, vertex): ties by vertex id
   for (const auto& [a_seg, b_seg] : pairs) {
     // The side with less area first: its distance bound also bounds the other side's search.
+    if (!(seg_area[a_seg] > 0.0) || !(seg_area[b_seg] > 0.0))
+      continue; // no area to bound the band by
     std::uint32_t sides[2] = {a_seg, b_seg};
     if (seg_area[b_seg] < seg_area[a_seg])
       std::swap(sides[0], sides[1]);
@@ -202,15 +240,18 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
       const std::uint32_t x = sides[s], y = sides[1 - s];
       // Geodesic distance from the common boundary: its points start at half their shortest
       // edge across it.
-      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
       const std::size_t first_seed = touched.size();
-      for (std::uint32_t p : members[x])
+      for (std::uint32_t p : frontier) {
+        if (segment[p] != x)
+          continue;
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
           if (segment[graph.targets[e]] == y && 0.5f * graph.lengths[e] < dist[p]) {
             if (dist[p] == kFar)
               touched.push_back(p);
             dist[p] = 0.5f * graph.lengths[e];
           }
+      }
+      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
       for (std::size_t i = first_seed; i < touched.size(); ++i)
         queue.emplace(dist[touched[i]], touched[i]);
       const double cap = params.band_fraction * seg_area[x];
@@ -224,7 +265,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
           bound = std::min(bound, d); // neither side's band may reach this far
           break;
         }
-        local[p] = -2; // settled
+        local[p] = -2;
         held += area(p);
         settled[s].push_back(p);
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -279,48 +320,107 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
       if (to_sink > 0.0)
         flow.addEdge(i, sink, to_sink, 0.0);
     }
-    flow.run(source, sink);
-    const std::vector<char> source_side = flow.sourceSide(source);
-    std::vector<std::uint32_t> old_label(m);
-    std::size_t moved = 0;
-    for (std::uint32_t i = 0; i < m; ++i) {
-      old_label[i] = segment[band[i]];
-      const std::uint32_t label = source_side[i] ? a_seg : b_seg;
-      moved += label != old_label[i];
-      segment[band[i]] = label;
-    }
     for (std::uint32_t p : band)
       local[p] = -1;
-    if (moved == 0)
-      continue;
-    // Members of both segments after the recut.
-    std::vector<std::uint32_t> old_a, old_b;
-    old_a.swap(members[a_seg]);
-    old_b.swap(members[b_seg]);
-    for (const auto* list : {&old_a, &old_b})
-      for (std::uint32_t p : *list)
-        members[segment[p]].push_back(p);
-    std::sort(members[a_seg].begin(), members[a_seg].end());
-    std::sort(members[b_seg].begin(), members[b_seg].end());
-    const std::size_t comp_a = components(a_seg), comp_b = components(b_seg);
-    if (comp_a > num_components[a_seg] || comp_b > num_components[b_seg] ||
-        members[a_seg].empty() || members[b_seg].empty()) {
-      // The recut would split a segment: the pair keeps its old boundary.
-      for (std::uint32_t i = 0; i < m; ++i)
-        segment[band[i]] = old_label[i];
-      members[a_seg].swap(old_a);
-      members[b_seg].swap(old_b);
-      continue;
-    }
-    num_components[a_seg] = comp_a;
-    num_components[b_seg] = comp_b;
-    for (std::uint32_t i = 0; i < m; ++i)
-      if (segment[band[i]] != old_label[i]) {
-        seg_area[old_label[i]] -= area(band[i]);
-        seg_area[segment[band[i]]] += area(band[i]);
+    flow.run(source, sink);
+    const std::vector<char> source_side = flow.sourceSide(source);
+    std::size_t moved = 0;
+    std::int64_t to_a = 0; // points a_seg gains
+    std::vector<std::uint32_t> label(m);
+    for (std::uint32_t i = 0; i < m; ++i) {
+      label[i] = source_side[i] ? a_seg : b_seg;
+      if (label[i] != segment[band[i]]) {
+        ++moved;
+        to_a += label[i] == a_seg ? 1 : -1;
       }
-    changed += moved;
+    }
+    // (The points outside the band keep each segment non-empty; this guards zero areas.)
+    if (moved == 0 || static_cast<std::int64_t>(seg_count[a_seg]) + to_a <= 0 ||
+        static_cast<std::int64_t>(seg_count[b_seg]) - to_a <= 0)
+      continue;
+    seg_count[a_seg] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[a_seg]) + to_a);
+    seg_count[b_seg] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[b_seg]) - to_a);
+    for (std::uint32_t i = 0; i < m; ++i)
+      if (label[i] != segment[band[i]]) {
+        seg_area[segment[band[i]]] -= area(band[i]);
+        seg_area[label[i]] += area(band[i]);
+        segment[band[i]] = label[i];
+      }
+    // The frontier after the recut: only band points and their neighbours can join it.
+    std::size_t kept = 0;
+    for (std::uint32_t p : frontier) {
+      if (onFrontier(p))
+        frontier[kept++] = p;
+      else
+        in_frontier[p] = 0;
+    }
+    frontier.resize(kept);
+    for (std::uint32_t p : band)
+      for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
+        if (!in_frontier[q] && onFrontier(q)) {
+          in_frontier[q] = 1;
+          frontier.push_back(q);
+        }
+      }
   }
+
+  // A recut may cut a piece off a segment (when its points outside the band were connected
+  // only through the band): such a piece joins the neighbouring segment it shares the most
+  // kNN edges with, so that no segment has more components than before and none empties
+  // (each keeps its largest components).
+  for (int round = 0; round < 8; ++round) {
+    const std::uint32_t num_components = segmentComponents(graph, segment, component);
+    const std::vector<std::size_t> count =
+        componentsPerSegment(segment, component, num_components, num_segments);
+    bool extra = false;
+    for (std::size_t x = 0; x < num_segments; ++x)
+      extra = extra || count[x] > components_before[x];
+    if (!extra)
+      break;
+    std::vector<double> comp_area(num_components, 0.0);
+    std::vector<std::uint32_t> comp_segment(num_components);
+    for (std::uint32_t p = 0; p < n; ++p) {
+      comp_area[component[p]] += area(p);
+      comp_segment[component[p]] = segment[p];
+    }
+    // Per segment with extra components, keep its largest (ties: smallest id).
+    std::vector<std::vector<std::uint32_t>> of_segment(num_segments);
+    for (std::uint32_t c = 0; c < num_components; ++c)
+      if (count[comp_segment[c]] > components_before[comp_segment[c]])
+        of_segment[comp_segment[c]].push_back(c);
+    std::vector<char> stray(num_components, 0);
+    for (std::size_t x = 0; x < num_segments; ++x) {
+      auto& list = of_segment[x];
+      std::stable_sort(list.begin(), list.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return comp_area[a] > comp_area[b];
+      });
+      for (std::size_t i = components_before[x]; i < list.size(); ++i)
+        stray[list[i]] = 1;
+    }
+    // Each stray piece's contacts with other segments, then it moves to the largest.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> contact;
+    for (std::uint32_t p = 0; p < n; ++p)
+      if (stray[component[p]])
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (segment[q] != segment[p])
+            ++contact[{component[p], segment[q]}];
+        }
+    std::vector<std::uint32_t> target(num_components, std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::size_t> best(num_components, 0);
+    for (const auto& [key, c] : contact)
+      if (c > best[key.first]) {
+        best[key.first] = c;
+        target[key.first] = key.second;
+      }
+    for (std::uint32_t p = 0; p < n; ++p)
+      if (stray[component[p]] && target[component[p]] != std::numeric_limits<std::uint32_t>::max())
+        segment[p] = target[component[p]];
+  }
+  std::size_t changed = 0;
+  for (std::size_t p = 0; p < n; ++p)
+    changed += segment[p] != original[p];
   return changed;
 }
 
