@@ -154,6 +154,7 @@ TEST(BoundaryRefinement, OffOrOneSegmentChangesNothing) {
     label[p] = p % 20 < 7 ? 0 : 1;
   const std::vector<std::uint32_t> before = label;
   BoundaryParams off;
+  off.band_fraction = 0.0;
   EXPECT_EQ(refineBoundaries(graph, radii, {}, off, label, 2), 0u);
   EXPECT_EQ(label, before);
   std::vector<std::uint32_t> one(100, 0);
@@ -267,7 +268,7 @@ TEST(BoundaryRefinement, KeepsEveryPointTheCountAndConnectivity) {
 
 TEST(BoundaryRefinement, SettersRejectBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  EXPECT_EQ(seg.getBoundaryBand(), 0.0); // off by default
+  EXPECT_EQ(seg.getBoundaryBand(), 0.2); // the default
   seg.setBoundaryBand(0.25);
   for (double bad : {-0.1, 0.51, std::numeric_limits<double>::quiet_NaN(),
                      std::numeric_limits<double>::infinity()})

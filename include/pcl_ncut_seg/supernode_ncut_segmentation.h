@@ -231,7 +231,8 @@ public:
    * region) around their common boundary that holds at most this fraction of either segment's
    * area; kNN edges across concave creases are cheap to cut (setBoundaryCreaseWeight), so
    * boundaries move from where the supernodes meet to the crease. The number of segments does
-   * not change, and a recut that would split a segment is not made. In [0, 0.5], default 0 =
+   * not change, and no segment gets more connected components in the kNN graph (a piece a recut
+   * cuts off joins the neighbouring segment it touches most). In [0, 0.5], default 0.2; 0 =
    * off (the paper: boundaries are supernode boundaries). Switching between 0 and a positive
    * value invalidates the expensive stage (it keeps one byte per kNN edge when on). */
   void setBoundaryBand(double fraction);

@@ -29,7 +29,7 @@ struct BoundaryParams {
   /// Band (fuzzy region) of each pair of touching segments: the points of both within a
   /// geodesic distance w of their common boundary, w as large as lets neither segment's side
   /// of the band hold more than this fraction of the segment's area; in [0, 0.5]; 0 = off.
-  double band_fraction = 0.0;
+  double band_fraction = 0.2;
   /// Capacity of a kNN edge in the minimum cut: its length (so that a cut's cost approximates
   /// the boundary's length whatever the sampling density) times exp(-crease_weight c), c the
   /// edge's concave bend of edgeCreases(); >= 0 (0: the shortest boundary in the band).
@@ -39,9 +39,10 @@ struct BoundaryParams {
 /** \brief Recut the boundary of each pair of touching segments (in order of their ids) with a
  * minimum cut over the pair's band on the kNN graph: the segments' points outside the band
  * are the source and the sink. Every point keeps a segment and no segment empties (each keeps
- * the part of it outside the band). A pair's new boundary is kept only if neither segment then
- * has more connected components in the kNN graph than before; otherwise the pair keeps its
- * old boundary. Sequential and deterministic.
+ * the part of it outside the band). When a recut cuts a piece off a segment (its points
+ * outside the band were connected only through the band), the piece joins the neighbouring
+ * segment it shares the most kNN edges with, so that no segment ends with more connected
+ * components in the kNN graph than it had. Sequential and deterministic.
  * \param[in] radii          r(p) of Sec. 4.3; a point's area is pi r(p)^2, as in f_a
  * \param[in] crease         from edgeCreases(); empty: no crease term
  * \param[in,out] segment    per vertex, its segment in [0, num_segments)
