@@ -2,19 +2,6 @@
 // 2003's fuzzy cuts over the kNN graph).
 #include <pcl_ncut_seg/core/boundary_refinement.h>
 
-// GCC 12 sees a maybe-uninitialized optional inside Boost.Graph's edge iterators (a false
-// positive in the library's headers).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <boost/graph/adjacency_list.hpp>
-#include <boost/graph/boykov_kolmogorov_max_flow.hpp>
-#include <boost/range/iterator_range.hpp>
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic pop
-#endif
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -61,61 +48,110 @@ std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
 
 namespace {
 
-/// Maximum flow on a small network (a band of points and two terminals): Boost.Graph's
-/// Boykov-Kolmogorov algorithm, fast on graphs of surface neighbourhoods; sequential, so the
-/// cut is the same whatever the number of threads.
-class MaxFlow {
-  using Traits = boost::adjacency_list_traits<boost::vecS, boost::vecS, boost::directedS>;
-  using Graph = boost::adjacency_list<
-      boost::vecS, boost::vecS, boost::directedS,
-      boost::property<boost::vertex_color_t, boost::default_color_type,
-                      boost::property<boost::vertex_distance_t, long,
-                                      boost::property<boost::vertex_predecessor_t,
-                                                      Traits::edge_descriptor>>>,
-      boost::property<boost::edge_capacity_t, double,
-                      boost::property<boost::edge_residual_capacity_t, double,
-                                      boost::property<boost::edge_reverse_t,
-                                                      Traits::edge_descriptor>>>>;
+/// Minimum s-t cut of a small network (a band of points and two terminals) in CSR form, by
+/// push-relabel (FIFO, with global relabelling; Goldberg and Tarjan): only the first phase,
+/// the maximum preflow, is needed for the cut. Sequential, so the cut is the same whatever the
+/// number of threads. Each undirected edge is two arcs, each the other's reverse.
+struct FlowNetwork {
+  std::vector<std::uint32_t> first; ///< size nodes + 1
+  std::vector<std::uint32_t> to, rev;
+  std::vector<double> cap; ///< residual capacity
 
-public:
-  explicit MaxFlow(std::uint32_t nodes) : graph_(nodes) {}
+  std::uint32_t nodes() const { return static_cast<std::uint32_t>(first.size() - 1); }
 
-  /// An arc u -> v of capacity cap_uv and its reverse of capacity cap_vu.
-  void addEdge(std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
-    const auto uv = boost::add_edge(u, v, graph_).first;
-    const auto vu = boost::add_edge(v, u, graph_).first;
-    boost::put(boost::edge_capacity, graph_, uv, cap_uv);
-    boost::put(boost::edge_capacity, graph_, vu, cap_vu);
-    boost::put(boost::edge_reverse, graph_, uv, vu);
-    boost::put(boost::edge_reverse, graph_, vu, uv);
-  }
-
-  double run(std::uint32_t s, std::uint32_t t) {
-    return boost::boykov_kolmogorov_max_flow(graph_, boost::vertex(s, graph_),
-                                             boost::vertex(t, graph_));
-  }
-
-  /// After run(): the nodes reachable from s in the residual network (the source side).
-  std::vector<char> sourceSide(std::uint32_t s) const {
-    std::vector<char> seen(boost::num_vertices(graph_), 0);
-    std::vector<std::uint32_t> stack{s};
-    seen[s] = 1;
-    while (!stack.empty()) {
-      const std::uint32_t u = stack.back();
-      stack.pop_back();
-      for (const auto& e : boost::make_iterator_range(boost::out_edges(u, graph_))) {
-        const auto v = static_cast<std::uint32_t>(boost::target(e, graph_));
-        if (boost::get(boost::edge_residual_capacity, graph_, e) > 0.0 && !seen[v]) {
-          seen[v] = 1;
-          stack.push_back(v);
+  /// The nodes that cannot reach t in the residual network after a maximum preflow from s.
+  std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t) {
+    const std::uint32_t n = nodes();
+    std::vector<std::uint32_t> height(n), cur(first.begin(), first.end() - 1);
+    std::vector<double> excess(n, 0.0);
+    std::vector<char> queued(n, 0);
+    std::vector<std::uint32_t> queue;
+    std::size_t head = 0;
+    // Exact distances to t over residual arcs; n for nodes that cannot reach it.
+    auto globalRelabel = [&]() {
+      std::fill(height.begin(), height.end(), n);
+      std::vector<std::uint32_t> bfs{t};
+      height[t] = 0;
+      for (std::size_t i = 0; i < bfs.size(); ++i) {
+        const std::uint32_t u = bfs[i];
+        for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
+          const std::uint32_t w = to[a];
+          if (w != s && height[w] == n && cap[rev[a]] > 0.0) {
+            height[w] = height[u] + 1;
+            bfs.push_back(w);
+          }
+        }
+      }
+      std::copy(first.begin(), first.end() - 1, cur.begin());
+    };
+    auto activate = [&](std::uint32_t v) {
+      if (v != s && v != t && !queued[v] && excess[v] > 0.0 && height[v] < n) {
+        queued[v] = 1;
+        queue.push_back(v);
+      }
+    };
+    globalRelabel();
+    for (std::uint32_t a = first[s]; a < first[s + 1]; ++a) {
+      const double c = cap[a];
+      if (!(c > 0.0))
+        continue;
+      cap[a] = 0.0;
+      cap[rev[a]] += c;
+      excess[to[a]] += c;
+      activate(to[a]);
+    }
+    std::size_t relabels = 0;
+    while (head < queue.size()) {
+      const std::uint32_t u = queue[head++];
+      queued[u] = 0;
+      while (excess[u] > 0.0 && height[u] < n) {
+        if (cur[u] == first[u + 1]) {
+          std::uint32_t h = n;
+          for (std::uint32_t a = first[u]; a < first[u + 1]; ++a)
+            if (cap[a] > 0.0)
+              h = std::min(h, height[to[a]] + 1);
+          height[u] = std::min(h, n);
+          cur[u] = first[u];
+          if (++relabels >= n) {
+            // Heights drift from the distances: recompute them, and the active nodes.
+            relabels = 0;
+            globalRelabel();
+            queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
+            head = 0;
+          }
+          continue;
+        }
+        const std::uint32_t a = cur[u], v = to[a];
+        if (cap[a] > 0.0 && height[u] == height[v] + 1) {
+          const double d = std::min(excess[u], cap[a]);
+          cap[a] -= d;
+          cap[rev[a]] += d;
+          excess[u] -= d;
+          excess[v] += d;
+          activate(v);
+          if (!(cap[a] > 0.0))
+            ++cur[u];
+        } else {
+          ++cur[u];
         }
       }
     }
-    return seen;
+    // The sink side: nodes that reach t through residual arcs.
+    std::vector<char> source(n, 1);
+    std::vector<std::uint32_t> bfs{t};
+    source[t] = 0;
+    for (std::size_t i = 0; i < bfs.size(); ++i) {
+      const std::uint32_t u = bfs[i];
+      for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
+        const std::uint32_t w = to[a];
+        if (source[w] && cap[rev[a]] > 0.0) {
+          source[w] = 0;
+          bfs.push_back(w);
+        }
+      }
+    }
+    return source;
   }
-
-private:
-  Graph graph_;
 };
 
 } // namespace
@@ -299,31 +335,63 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
 
     // The network: band points, the source (a_seg outside the band) and the sink (b_seg
     // outside the band); points of other segments take no part.
-    MaxFlow flow(m + 2);
     const std::uint32_t source = m, sink = m + 1;
+    FlowNetwork net;
+    net.first.assign(m + 3, 0);
+    std::vector<double> to_source(m, 0.0), to_sink(m, 0.0);
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = band[i];
-      double to_source = 0.0, to_sink = 0.0;
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
-        if (local[q] >= 0) {
-          if (q > p)
-            flow.addEdge(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
-        } else if (segment[q] == a_seg) {
-          to_source += capacity(e);
-        } else if (segment[q] == b_seg) {
-          to_sink += capacity(e);
-        }
+        if (local[q] >= 0)
+          ++net.first[i + 1];
+        else if (segment[q] == a_seg)
+          to_source[i] += capacity(e);
+        else if (segment[q] == b_seg)
+          to_sink[i] += capacity(e);
       }
-      if (to_source > 0.0)
-        flow.addEdge(source, i, to_source, 0.0);
-      if (to_sink > 0.0)
-        flow.addEdge(i, sink, to_sink, 0.0);
+      if (to_source[i] > 0.0) {
+        ++net.first[i + 1];
+        ++net.first[source + 1];
+      }
+      if (to_sink[i] > 0.0) {
+        ++net.first[i + 1];
+        ++net.first[sink + 1];
+      }
     }
+    for (std::uint32_t v = 0; v < m + 2; ++v)
+      net.first[v + 1] += net.first[v];
+    const std::uint32_t arcs = net.first[m + 2];
+    net.to.resize(arcs);
+    net.rev.resize(arcs);
+    net.cap.resize(arcs);
+    std::vector<std::uint32_t> fill(net.first.begin(), net.first.end() - 1);
+    auto addPair = [&](std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
+      const std::uint32_t a = fill[u]++, b = fill[v]++;
+      net.to[a] = v;
+      net.to[b] = u;
+      net.rev[a] = b;
+      net.rev[b] = a;
+      net.cap[a] = cap_uv;
+      net.cap[b] = cap_vu;
+    };
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t p = band[i];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (local[q] >= 0 && q > p)
+          addPair(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
+      }
+      if (to_source[i] > 0.0)
+        addPair(source, i, to_source[i], 0.0);
+      if (to_sink[i] > 0.0)
+        addPair(i, sink, to_sink[i], 0.0);
+    }
+    std::vector<double>().swap(to_source);
+    std::vector<double>().swap(to_sink);
     for (std::uint32_t p : band)
       local[p] = -1;
-    flow.run(source, sink);
-    const std::vector<char> source_side = flow.sourceSide(source);
+    const std::vector<char> source_side = net.sourceSide(source, sink);
     std::size_t moved = 0;
     std::int64_t to_a = 0; // points a_seg gains
     std::vector<std::uint32_t> label(m);
@@ -340,11 +408,13 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
       continue;
     seg_count[a_seg] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[a_seg]) + to_a);
     seg_count[b_seg] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[b_seg]) - to_a);
+    std::vector<std::uint32_t> changed_points;
     for (std::uint32_t i = 0; i < m; ++i)
       if (label[i] != segment[band[i]]) {
         seg_area[segment[band[i]]] -= area(band[i]);
         seg_area[label[i]] += area(band[i]);
         segment[band[i]] = label[i];
+        changed_points.push_back(band[i]);
       }
     // The frontier after the recut: only band points and their neighbours can join it.
     std::size_t kept = 0;
@@ -355,7 +425,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
         in_frontier[p] = 0;
     }
     frontier.resize(kept);
-    for (std::uint32_t p : band)
+    for (std::uint32_t p : changed_points)
       for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
         if (!in_frontier[q] && onFrontier(q)) {
