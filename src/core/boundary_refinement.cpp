@@ -112,8 +112,9 @@ struct FlowNetwork {
               h = std::min(h, height[to[a]] + 1);
           height[u] = std::min(h, n);
           cur[u] = first[u];
-          if (++relabels >= n) {
-            // Heights drift from the distances: recompute them, and the active nodes.
+          if (++relabels >= n / 4 + 1) {
+            // Heights drift from the distances: recompute them (every n / 4 relabels: about
+            // twice as fast as every n on a 1M-point model).
             relabels = 0;
             globalRelabel();
             queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
