@@ -49,7 +49,7 @@ struct Segmented {
 };
 
 Segmented segment(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int count, double band,
-            unsigned threads = 0) {
+                  unsigned threads = 0) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
   if (count > 0)
@@ -62,8 +62,9 @@ Segmented segment(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int count, d
 }
 
 /// Connected components of each segment in the segmenter's kNN graph.
-std::vector<std::size_t> componentsPerSegment(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg,
-                                              const std::vector<int>& labels, std::size_t count) {
+std::vector<std::size_t>
+componentsPerSegment(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg,
+                     const std::vector<int>& labels, std::size_t count) {
   const CsrGraph& graph = seg.getAnalysis()->graph;
   const std::vector<int>& index = seg.getAnalysedIndices();
   std::vector<std::uint32_t> vertex_label(index.size());
@@ -275,8 +276,8 @@ TEST(BoundaryRefinement, SettersRejectBadValues) {
     seg.setBoundaryBand(bad);
   EXPECT_EQ(seg.getBoundaryBand(), 0.25);
   seg.setBoundaryCreaseWeight(5.0);
-  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(),
-                     std::numeric_limits<double>::infinity()})
+  for (double bad :
+       {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
     seg.setBoundaryCreaseWeight(bad);
   EXPECT_EQ(seg.getBoundaryCreaseWeight(), 5.0);
   seg.setBoundaryCreaseWeight(0.0);

@@ -212,8 +212,8 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
   if (!(params.band_fraction > 0.0) || num_segments < 2 || n == 0 || segment.size() != n ||
       radii.size() != n)
     return 0;
-  const bool use_crease = !crease.empty() && crease.size() == graph.numDirectedEdges() &&
-                          params.crease_weight > 0.0;
+  const bool use_crease =
+      !crease.empty() && crease.size() == graph.numDirectedEdges() && params.crease_weight > 0.0;
   std::array<double, 256> factor;
   for (std::size_t c = 0; c < factor.size(); ++c)
     factor[c] = use_crease ? std::exp(-params.crease_weight * static_cast<double>(c) / 16.0) : 1.0;
@@ -232,8 +232,6 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
     ++seg_count[segment[p]];
   }
   std::vector<std::uint32_t> component;
-  const std::vector<std::size_t> components_before = componentsPerSegment(
-      segment, component, segmentComponents(graph, segment, component), num_segments);
 
   // The frontier: points with a neighbour in another segment. Touching pairs, in order of ids.
   auto onFrontier = [&](std::uint32_t p) {
@@ -262,7 +260,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
 
   constexpr float kFar = std::numeric_limits<float>::infinity();
   std::vector<float> dist(n, kFar);
-  std::vector<std::int32_t> local(n, -1); // -2: settled; >= 0: index in the band
+  std::vector<std::int32_t> local(n, -1);       // -2: settled; >= 0: index in the band
   using Item = std::pair<float, std::uint32_t>; // (distance, vertex): ties by vertex id
   for (const auto& [a_seg, b_seg] : pairs) {
     // The side with less area first: its distance bound also bounds the other side's search.
@@ -440,10 +438,19 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
   // only through the band): such a piece joins the neighbouring segment it shares the most
   // kNN edges with, so that no segment has more components than before and none empties
   // (each keeps its largest components).
+  std::vector<std::size_t> components_before; // of the original segments, when needed
   for (int round = 0; round < 8; ++round) {
     const std::uint32_t num_components = segmentComponents(graph, segment, component);
     const std::vector<std::size_t> count =
         componentsPerSegment(segment, component, num_components, num_segments);
+    if (num_components == num_segments)
+      break; // each segment is connected
+    if (components_before.empty()) {
+      std::vector<std::uint32_t> original_component;
+      components_before = componentsPerSegment(
+          original, original_component, segmentComponents(graph, original, original_component),
+          num_segments);
+    }
     bool extra = false;
     for (std::size_t x = 0; x < num_segments; ++x)
       extra = extra || count[x] > components_before[x];
