@@ -294,8 +294,9 @@ std::vector<Flag> algorithmFlags() {
               num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernodes that meet at no saddle, no bridging of kNN-graph "
-                           "components, no concavity term, no flat patches, no boundary refinement, recursive bisection while "
-                           "NCut <= T instead of the largest-gap rule, exact centrality"),
+                           "components, no concavity term, no flat patches, no boundary "
+                           "refinement, recursive bisection while NCut <= T instead of the "
+                           "largest-gap rule, exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
       realFlag("-face_angle", "DEG",
