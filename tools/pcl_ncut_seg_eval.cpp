@@ -65,6 +65,7 @@ struct Options {
   double flat = -1;
   double neck = -1;       ///< setNeckExponent
   double neck_bound = -1; ///< setNeckBound
+  double band = -1, crease = -1; ///< setBoundaryBand, setBoundaryCreaseWeight
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -98,6 +99,8 @@ void printHelp() {
          "  -flat E           setFlatElongation (default: the library's default)\n"
          "  -neck W           setNeckExponent, 0 = largest jump (default: the library's)\n"
          "  -neckbound K      setNeckBound (default: the library's default)\n"
+         "  -band F           setBoundaryBand (default: the library's default)\n"
+         "  -crease W         setBoundaryCreaseWeight (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -199,6 +202,10 @@ Options parseOptions(int argc, char** argv) {
       o.concavity = parseNumber(a, v);
     } else if (a == "-flat") {
       o.flat = parseNumber(a, v);
+    } else if (a == "-band") {
+      o.band = parseNumber(a, v);
+    } else if (a == "-crease") {
+      o.crease = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
     } else if (a == "-neck") {
@@ -284,10 +291,17 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setConcavityWeight(o.concavity);
   if (o.flat >= 0)
     seg.setFlatElongation(o.flat);
+  if (o.band >= 0)
+    seg.setBoundaryBand(o.band);
+  if (o.band >= 0 && seg.getBoundaryBand() != o.band)
+    fail("-band needs a value in [0, 0.5]");
+  if (o.crease >= 0)
+    seg.setBoundaryCreaseWeight(o.crease);
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
+    seg.setBoundaryBand(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

@@ -280,6 +280,15 @@ std::vector<Flag> algorithmFlags() {
       realFlag("-neck_bound", "K",
                "short-cut stopping rule: weighted NCut below which a split is worth making, > 0",
                num(d.getNeckBound()), 0, 1e308, true),
+      realFlag("-boundary_band", "F",
+               "boundary refinement: recut each pair of touching segments by a minimum cut "
+               "within a band holding at most this fraction of either segment, in [0, 0.5]; "
+               "0 = off",
+               num(d.getBoundaryBand()), 0, 0.5),
+      realFlag("-boundary_crease", "W",
+               "boundary refinement: a kNN edge's cut cost is its length times exp(-W c), c "
+               "its concave bend, >= 0",
+               num(d.getBoundaryCreaseWeight()), 0),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -292,8 +301,9 @@ std::vector<Flag> algorithmFlags() {
               num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernodes that meet at no saddle, no bridging of kNN-graph "
-                           "components, no concavity term, no flat patches, recursive bisection while "
-                           "NCut <= T instead of the largest-gap rule, exact centrality"),
+                           "components, no concavity term, no flat patches, no boundary "
+                           "refinement, recursive bisection while NCut <= T instead of the "
+                           "largest-gap rule, exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
       realFlag("-face_angle", "DEG",
@@ -365,6 +375,10 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setNeckBound(flags.real("-neck_bound"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
+  if (flags.has("-boundary_band"))
+    seg.setBoundaryBand(flags.real("-boundary_band"));
+  if (flags.has("-boundary_crease"))
+    seg.setBoundaryCreaseWeight(flags.real("-boundary_crease"));
   if (flags.has("-min_fraction"))
     seg.setMinSegmentFraction(flags.real("-min_fraction"));
   if (flags.has("-exact"))
@@ -380,6 +394,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
+    seg.setBoundaryBand(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;

@@ -14,6 +14,7 @@
 #include <pcl/PointIndices.h>
 #include <pcl/search/search.h>
 
+#include <pcl_ncut_seg/core/boundary_refinement.h>
 #include <pcl_ncut_seg/core/cad.h>
 #include <pcl_ncut_seg/core/pipeline.h>
 
@@ -240,6 +241,24 @@ public:
   void setFlatElongation(double elongation);
   double getFlatElongation() const { return similarity_.flat_elongation; }
 
+  /** \brief Boundary refinement after the hierarchy: each pair of touching segments is recut
+   * along the cheapest boundary, by a minimum cut on the kNN graph, within a band (fuzzy
+   * region) around their common boundary that holds at most this fraction of either segment's
+   * area; kNN edges across concave creases are cheap to cut (setBoundaryCreaseWeight), so
+   * boundaries move from where the supernodes meet to the crease. The number of segments does
+   * not change, and no segment gets more connected components in the kNN graph (a piece a recut
+   * cuts off joins the neighbouring segment it touches most). In [0, 0.5], default 0.2; 0 =
+   * off (the paper: boundaries are supernode boundaries). Switching between 0 and a positive
+   * value invalidates the expensive stage (it keeps one byte per kNN edge when on). */
+  void setBoundaryBand(double fraction);
+  double getBoundaryBand() const { return boundary_.band_fraction; }
+
+  /** \brief Boundary refinement: a kNN edge's capacity in the minimum cut is its length times
+   * exp(-w c), c its concave bend relative to the model's mean bend per edge (as in
+   * setConcavityWeight); >= 0, default 3; 0 = the shortest boundary within the band. */
+  void setBoundaryCreaseWeight(double weight);
+  double getBoundaryCreaseWeight() const { return boundary_.crease_weight; }
+
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
    * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);
@@ -314,6 +333,7 @@ protected:
   pcl_ncut_seg::CadParams cad_;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;
+  pcl_ncut_seg::BoundaryParams boundary_;
   std::function<void(const char*, double)> progress_;
 
   std::shared_ptr<pcl_ncut_seg::Analysis> analysis_; ///< expensive stage, or null

@@ -63,6 +63,9 @@ struct Analysis {
   /// Per pair of touching supernodes, how concave their contact is (core/concavity.h); empty
   /// unless SimilarityParams::concavity_weight is used.
   Connectivity concavity;
+  /// Per directed kNN edge, its concave bend for the boundary refinement
+  /// (core/boundary_refinement.h); empty unless BoundaryParams::band_fraction is used.
+  std::vector<std::uint8_t> crease;
 };
 
 /** \brief Run Secs. 4.1-4.3 on a prepared kNN graph. Times go to times.centrality etc. */

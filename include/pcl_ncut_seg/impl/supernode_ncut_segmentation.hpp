@@ -332,6 +332,30 @@ void pcl::SupernodeNCutSegmentation<PointT>::setFlatElongation(double elongation
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setBoundaryBand(double fraction) {
+  if (!(fraction >= 0.0 && fraction <= 0.5)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setBoundaryBand] fraction must be in [0, 0.5], "
+              "got %g; keeping %g.\n",
+              fraction, boundary_.band_fraction);
+    return;
+  }
+  if ((fraction > 0.0) != (boundary_.band_fraction > 0.0))
+    invalidate(); // the edges' creases are kept from the expensive stage only when used
+  boundary_.band_fraction = fraction;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setBoundaryCreaseWeight(double weight) {
+  if (!(weight >= 0.0) || !std::isfinite(weight)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setBoundaryCreaseWeight] weight must be finite "
+              "and >= 0, got %g; keeping %g.\n",
+              weight, boundary_.crease_weight);
+    return;
+  }
+  boundary_.crease_weight = weight;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
   if (!(share >= 0.0 && share <= 1.0)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
@@ -514,7 +538,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   std::vector<std::uint32_t>().swap(knn); // free before the expensive stage
   if (bridge_gap_ > 0.0)
     pcl_ncut_seg::bridgeComponents(graph, xyz.data(), bridge_gap_);
-  if (!cad_mode_ && !(similarity_.concavity_weight > 0.0)) // still needed by these
+  const bool refine_boundaries = !cad_mode_ && boundary_.band_fraction > 0.0;
+  if (!cad_mode_ && !(similarity_.concavity_weight > 0.0) && !refine_boundaries) // needed there
     std::vector<float>().swap(xyz);
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -557,13 +582,16 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   } else {
     analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
         pcl_ncut_seg::analyze(std::move(graph), params, times_));
-    if (similarity_.concavity_weight > 0.0) {
+    if (similarity_.concavity_weight > 0.0 || refine_boundaries) {
       // Measured between the supernodes, like eq. (8): its time counts as refinement time.
       const auto concavity_start = std::chrono::steady_clock::now();
-      analysis_->concavity = pcl_ncut_seg::contactConcavity(
-          analysis_->graph, xyz.data(),
-          pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data(), num_threads_),
-          analysis_->supernodes.label);
+      const std::vector<float> normals =
+          pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data(), num_threads_);
+      if (similarity_.concavity_weight > 0.0)
+        analysis_->concavity = pcl_ncut_seg::contactConcavity(analysis_->graph, xyz.data(),
+                                                              normals, analysis_->supernodes.label);
+      if (refine_boundaries)
+        analysis_->crease = pcl_ncut_seg::edgeCreases(analysis_->graph, xyz.data(), normals);
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - concavity_start)
               .count();
@@ -589,6 +617,14 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   if (progress_)
     progress_("HSeg", 0.0);
   result_ = pcl_ncut_seg::cut(*analysis_, similarity_, cut_, times_);
+  if (!analysis_->cad && boundary_.band_fraction > 0.0) {
+    // Point-level boundaries (core/boundary_refinement.h): point segmentation time.
+    const auto boundary_start = std::chrono::steady_clock::now();
+    pcl_ncut_seg::refineBoundaries(analysis_->graph, analysis_->radii, analysis_->crease,
+                                   boundary_, result_.point_segment, result_.num_segments);
+    times_.points +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - boundary_start).count();
+  }
   // Number segments in order of their smallest input index (vertices are in Morton order).
   std::vector<int> smallest(result_.num_segments, std::numeric_limits<int>::max());
   for (std::size_t i = 0; i < point_index_.size(); ++i) {

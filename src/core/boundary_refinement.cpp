@@ -1,0 +1,505 @@
+// Point-level boundary refinement after the hierarchy (an extension of Sec. 5.2; Katz and Tal
+// 2003's fuzzy cuts over the kNN graph).
+#include <pcl_ncut_seg/core/boundary_refinement.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <queue>
+#include <utility>
+
+namespace pcl_ncut_seg {
+
+std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
+                                      const std::vector<float>& normals) {
+  const std::size_t n = graph.numVertices();
+  std::vector<std::uint8_t> crease(graph.numDirectedEdges(), 0);
+  // Signed bend of an edge, as in contactConcavity(): > 0 where the surface folds outwards.
+  auto bend = [&](std::size_t p, std::uint32_t q, float length) {
+    if (!(length > 0.0f))
+      return 0.0;
+    double s = 0.0;
+    for (int d = 0; d < 3; ++d)
+      s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
+    return s / length;
+  };
+  double total = 0.0;
+  std::size_t edges = 0;
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      if (graph.targets[e] > p) {
+        total += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
+        ++edges;
+      }
+  const double typical = edges > 0 ? total / static_cast<double>(edges) : 0.0;
+  if (!(typical > 0.0))
+    return crease;
+  // The bend is symmetric in p and q: both directions get the same value.
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const double c = std::max(0.0, -bend(p, graph.targets[e], graph.lengths[e])) / typical;
+      crease[e] = static_cast<std::uint8_t>(std::min(255.0, std::round(16.0 * c)));
+    }
+  return crease;
+}
+
+namespace {
+
+/// Minimum s-t cut of a small network (a band of points and two terminals) in CSR form, by
+/// push-relabel (FIFO, with global relabelling; Goldberg and Tarjan): only the first phase,
+/// the maximum preflow, is needed for the cut. Sequential, so the cut is the same whatever the
+/// number of threads. Each undirected edge is two arcs, each the other's reverse.
+struct FlowNetwork {
+  std::vector<std::uint32_t> first; ///< size nodes + 1
+  std::vector<std::uint32_t> to, rev;
+  std::vector<double> cap; ///< residual capacity
+
+  std::uint32_t nodes() const { return static_cast<std::uint32_t>(first.size() - 1); }
+
+  /// The nodes that cannot reach t in the residual network after a maximum preflow from s.
+  std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t) {
+    const std::uint32_t n = nodes();
+    std::vector<std::uint32_t> height(n), cur(first.begin(), first.end() - 1);
+    std::vector<double> excess(n, 0.0);
+    std::vector<char> queued(n, 0);
+    std::vector<std::uint32_t> queue;
+    std::size_t head = 0;
+    // Exact distances to t over residual arcs; n for nodes that cannot reach it.
+    auto globalRelabel = [&]() {
+      std::fill(height.begin(), height.end(), n);
+      std::vector<std::uint32_t> bfs{t};
+      height[t] = 0;
+      for (std::size_t i = 0; i < bfs.size(); ++i) {
+        const std::uint32_t u = bfs[i];
+        for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
+          const std::uint32_t w = to[a];
+          if (w != s && height[w] == n && cap[rev[a]] > 0.0) {
+            height[w] = height[u] + 1;
+            bfs.push_back(w);
+          }
+        }
+      }
+      std::copy(first.begin(), first.end() - 1, cur.begin());
+    };
+    auto activate = [&](std::uint32_t v) {
+      if (v != s && v != t && !queued[v] && excess[v] > 0.0 && height[v] < n) {
+        queued[v] = 1;
+        queue.push_back(v);
+      }
+    };
+    globalRelabel();
+    for (std::uint32_t a = first[s]; a < first[s + 1]; ++a) {
+      const double c = cap[a];
+      if (!(c > 0.0))
+        continue;
+      cap[a] = 0.0;
+      cap[rev[a]] += c;
+      excess[to[a]] += c;
+      activate(to[a]);
+    }
+    std::size_t relabels = 0;
+    while (head < queue.size()) {
+      const std::uint32_t u = queue[head++];
+      queued[u] = 0;
+      while (excess[u] > 0.0 && height[u] < n) {
+        if (cur[u] == first[u + 1]) {
+          std::uint32_t h = n;
+          for (std::uint32_t a = first[u]; a < first[u + 1]; ++a)
+            if (cap[a] > 0.0)
+              h = std::min(h, height[to[a]] + 1);
+          height[u] = std::min(h, n);
+          cur[u] = first[u];
+          if (++relabels >= n / 4 + 1) {
+            // Heights drift from the distances: recompute them (every n / 4 relabels: about
+            // twice as fast as every n on a 1M-point model).
+            relabels = 0;
+            globalRelabel();
+            queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
+            head = 0;
+          }
+          continue;
+        }
+        const std::uint32_t a = cur[u], v = to[a];
+        if (cap[a] > 0.0 && height[u] == height[v] + 1) {
+          const double d = std::min(excess[u], cap[a]);
+          cap[a] -= d;
+          cap[rev[a]] += d;
+          excess[u] -= d;
+          excess[v] += d;
+          activate(v);
+          if (!(cap[a] > 0.0))
+            ++cur[u];
+        } else {
+          ++cur[u];
+        }
+      }
+    }
+    // The sink side: nodes that reach t through residual arcs.
+    std::vector<char> source(n, 1);
+    std::vector<std::uint32_t> bfs{t};
+    source[t] = 0;
+    for (std::size_t i = 0; i < bfs.size(); ++i) {
+      const std::uint32_t u = bfs[i];
+      for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
+        const std::uint32_t w = to[a];
+        if (source[w] && cap[rev[a]] > 0.0) {
+          source[w] = 0;
+          bfs.push_back(w);
+        }
+      }
+    }
+    return source;
+  }
+};
+
+} // namespace
+
+namespace {
+
+/// Connected components of each segment in the graph: per vertex its component (numbered in
+/// order of their smallest vertex); returns their number.
+std::uint32_t segmentComponents(const CsrGraph& graph, const std::vector<std::uint32_t>& segment,
+                                std::vector<std::uint32_t>& component) {
+  const std::size_t n = graph.numVertices();
+  constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
+  component.assign(n, kUnset);
+  std::uint32_t count = 0;
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t root = 0; root < n; ++root) {
+    if (component[root] != kUnset)
+      continue;
+    component[root] = count;
+    stack.assign(1, root);
+    while (!stack.empty()) {
+      const std::uint32_t u = stack.back();
+      stack.pop_back();
+      for (std::uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; ++e) {
+        const std::uint32_t v = graph.targets[e];
+        if (component[v] == kUnset && segment[v] == segment[root]) {
+          component[v] = count;
+          stack.push_back(v);
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+/// Per segment, its number of connected components.
+std::vector<std::size_t> componentsPerSegment(const std::vector<std::uint32_t>& segment,
+                                              const std::vector<std::uint32_t>& component,
+                                              std::uint32_t num_components,
+                                              std::size_t num_segments) {
+  std::vector<std::uint32_t> segment_of(num_components);
+  for (std::size_t p = 0; p < segment.size(); ++p)
+    segment_of[component[p]] = segment[p];
+  std::vector<std::size_t> count(num_segments, 0);
+  for (std::uint32_t c = 0; c < num_components; ++c)
+    ++count[segment_of[c]];
+  return count;
+}
+
+} // namespace
+
+std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& radii,
+                             const std::vector<std::uint8_t>& crease, const BoundaryParams& params,
+                             std::vector<std::uint32_t>& segment, std::size_t num_segments) {
+  const std::size_t n = graph.numVertices();
+  if (!(params.band_fraction > 0.0) || num_segments < 2 || n == 0 || segment.size() != n ||
+      radii.size() != n)
+    return 0;
+  const bool use_crease =
+      !crease.empty() && crease.size() == graph.numDirectedEdges() && params.crease_weight > 0.0;
+  std::array<double, 256> factor;
+  for (std::size_t c = 0; c < factor.size(); ++c)
+    factor[c] = use_crease ? std::exp(-params.crease_weight * static_cast<double>(c) / 16.0) : 1.0;
+  auto capacity = [&](std::uint32_t e) {
+    return static_cast<double>(graph.lengths[e]) * (use_crease ? factor[crease[e]] : 1.0);
+  };
+  auto area = [&](std::uint32_t p) {
+    return static_cast<double>(radii[p]) * static_cast<double>(radii[p]);
+  };
+  const std::vector<std::uint32_t> original = segment;
+
+  std::vector<double> seg_area(num_segments, 0.0);
+  std::vector<std::size_t> seg_count(num_segments, 0);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    seg_area[segment[p]] += area(p);
+    ++seg_count[segment[p]];
+  }
+  std::vector<std::uint32_t> component;
+
+  // The frontier: points with a neighbour in another segment. Touching pairs, in order of ids.
+  auto onFrontier = [&](std::uint32_t p) {
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      if (segment[graph.targets[e]] != segment[p])
+        return true;
+    return false;
+  };
+  std::vector<std::uint32_t> frontier;
+  std::vector<char> in_frontier(n, 0);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
+  for (std::uint32_t p = 0; p < n; ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const std::uint32_t q = graph.targets[e];
+      if (segment[q] == segment[p])
+        continue;
+      if (!in_frontier[p]) {
+        in_frontier[p] = 1;
+        frontier.push_back(p);
+      }
+      if (segment[p] < segment[q])
+        pairs.emplace_back(segment[p], segment[q]);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+
+  constexpr float kFar = std::numeric_limits<float>::infinity();
+  std::vector<float> dist(n, kFar);
+  std::vector<std::int32_t> local(n, -1);       // -2: settled; >= 0: index in the band
+  using Item = std::pair<float, std::uint32_t>; // (distance, vertex): ties by vertex id
+  for (const auto& [a_seg, b_seg] : pairs) {
+    // The side with less area first: its distance bound also bounds the other side's search.
+    if (!(seg_area[a_seg] > 0.0) || !(seg_area[b_seg] > 0.0))
+      continue; // no area to bound the band by
+    std::uint32_t sides[2] = {a_seg, b_seg};
+    if (seg_area[b_seg] < seg_area[a_seg])
+      std::swap(sides[0], sides[1]);
+    std::vector<std::uint32_t> settled[2], touched;
+    float bound = kFar;
+    for (int s = 0; s < 2; ++s) {
+      const std::uint32_t x = sides[s], y = sides[1 - s];
+      // Geodesic distance from the common boundary: its points start at half their shortest
+      // edge across it.
+      const std::size_t first_seed = touched.size();
+      for (std::uint32_t p : frontier) {
+        if (segment[p] != x)
+          continue;
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+          if (segment[graph.targets[e]] == y && 0.5f * graph.lengths[e] < dist[p]) {
+            if (dist[p] == kFar)
+              touched.push_back(p);
+            dist[p] = 0.5f * graph.lengths[e];
+          }
+      }
+      std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+      for (std::size_t i = first_seed; i < touched.size(); ++i)
+        queue.emplace(dist[touched[i]], touched[i]);
+      const double cap = params.band_fraction * seg_area[x];
+      double held = 0.0;
+      while (!queue.empty()) {
+        const auto [d, p] = queue.top();
+        queue.pop();
+        if (d > dist[p] || local[p] == -2)
+          continue;
+        if (d >= bound || held + area(p) > cap) {
+          bound = std::min(bound, d); // neither side's band may reach this far
+          break;
+        }
+        local[p] = -2;
+        held += area(p);
+        settled[s].push_back(p);
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          const float dq = d + graph.lengths[e];
+          if (segment[q] == x && local[q] != -2 && dq < dist[q]) {
+            if (dist[q] == kFar)
+              touched.push_back(q);
+            dist[q] = dq;
+            queue.emplace(dq, q);
+          }
+        }
+      }
+    }
+    // The band: the settled points of both sides closer than the bound.
+    std::vector<std::uint32_t> band;
+    for (int s = 0; s < 2; ++s)
+      for (std::uint32_t p : settled[s]) {
+        if (dist[p] < bound)
+          band.push_back(p);
+        local[p] = -1;
+      }
+    for (std::uint32_t p : touched)
+      dist[p] = kFar;
+    if (band.empty())
+      continue;
+    std::sort(band.begin(), band.end());
+    const auto m = static_cast<std::uint32_t>(band.size());
+    for (std::uint32_t i = 0; i < m; ++i)
+      local[band[i]] = static_cast<std::int32_t>(i);
+
+    // The network: band points, the source (a_seg outside the band) and the sink (b_seg
+    // outside the band); points of other segments take no part.
+    const std::uint32_t source = m, sink = m + 1;
+    FlowNetwork net;
+    net.first.assign(m + 3, 0);
+    std::vector<double> to_source(m, 0.0), to_sink(m, 0.0);
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t p = band[i];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (local[q] >= 0)
+          ++net.first[i + 1];
+        else if (segment[q] == a_seg)
+          to_source[i] += capacity(e);
+        else if (segment[q] == b_seg)
+          to_sink[i] += capacity(e);
+      }
+      if (to_source[i] > 0.0) {
+        ++net.first[i + 1];
+        ++net.first[source + 1];
+      }
+      if (to_sink[i] > 0.0) {
+        ++net.first[i + 1];
+        ++net.first[sink + 1];
+      }
+    }
+    for (std::uint32_t v = 0; v < m + 2; ++v)
+      net.first[v + 1] += net.first[v];
+    const std::uint32_t arcs = net.first[m + 2];
+    net.to.resize(arcs);
+    net.rev.resize(arcs);
+    net.cap.resize(arcs);
+    std::vector<std::uint32_t> fill(net.first.begin(), net.first.end() - 1);
+    auto addPair = [&](std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
+      const std::uint32_t a = fill[u]++, b = fill[v]++;
+      net.to[a] = v;
+      net.to[b] = u;
+      net.rev[a] = b;
+      net.rev[b] = a;
+      net.cap[a] = cap_uv;
+      net.cap[b] = cap_vu;
+    };
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t p = band[i];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (local[q] >= 0 && q > p)
+          addPair(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
+      }
+      if (to_source[i] > 0.0)
+        addPair(source, i, to_source[i], 0.0);
+      if (to_sink[i] > 0.0)
+        addPair(i, sink, to_sink[i], 0.0);
+    }
+    std::vector<double>().swap(to_source);
+    std::vector<double>().swap(to_sink);
+    for (std::uint32_t p : band)
+      local[p] = -1;
+    const std::vector<char> source_side = net.sourceSide(source, sink);
+    std::size_t moved = 0;
+    std::int64_t to_a = 0; // points a_seg gains
+    std::vector<std::uint32_t> label(m);
+    for (std::uint32_t i = 0; i < m; ++i) {
+      label[i] = source_side[i] ? a_seg : b_seg;
+      if (label[i] != segment[band[i]]) {
+        ++moved;
+        to_a += label[i] == a_seg ? 1 : -1;
+      }
+    }
+    // (The points outside the band keep each segment non-empty; this guards zero areas.)
+    if (moved == 0 || static_cast<std::int64_t>(seg_count[a_seg]) + to_a <= 0 ||
+        static_cast<std::int64_t>(seg_count[b_seg]) - to_a <= 0)
+      continue;
+    seg_count[a_seg] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[a_seg]) + to_a);
+    seg_count[b_seg] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[b_seg]) - to_a);
+    std::vector<std::uint32_t> changed_points;
+    for (std::uint32_t i = 0; i < m; ++i)
+      if (label[i] != segment[band[i]]) {
+        seg_area[segment[band[i]]] -= area(band[i]);
+        seg_area[label[i]] += area(band[i]);
+        segment[band[i]] = label[i];
+        changed_points.push_back(band[i]);
+      }
+    // The frontier after the recut: only band points and their neighbours can join it.
+    std::size_t kept = 0;
+    for (std::uint32_t p : frontier) {
+      if (onFrontier(p))
+        frontier[kept++] = p;
+      else
+        in_frontier[p] = 0;
+    }
+    frontier.resize(kept);
+    for (std::uint32_t p : changed_points)
+      for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
+        if (!in_frontier[q] && onFrontier(q)) {
+          in_frontier[q] = 1;
+          frontier.push_back(q);
+        }
+      }
+  }
+
+  // A recut may cut a piece off a segment (when its points outside the band were connected
+  // only through the band): such a piece joins the neighbouring segment it shares the most
+  // kNN edges with, so that no segment has more components than before and none empties
+  // (each keeps its largest components).
+  std::vector<std::size_t> components_before; // of the original segments, when needed
+  for (int round = 0; round < 8; ++round) {
+    const std::uint32_t num_components = segmentComponents(graph, segment, component);
+    const std::vector<std::size_t> count =
+        componentsPerSegment(segment, component, num_components, num_segments);
+    if (num_components == num_segments)
+      break; // each segment is connected
+    if (components_before.empty()) {
+      std::vector<std::uint32_t> original_component;
+      components_before = componentsPerSegment(
+          original, original_component, segmentComponents(graph, original, original_component),
+          num_segments);
+    }
+    bool extra = false;
+    for (std::size_t x = 0; x < num_segments; ++x)
+      extra = extra || count[x] > components_before[x];
+    if (!extra)
+      break;
+    std::vector<double> comp_area(num_components, 0.0);
+    std::vector<std::uint32_t> comp_segment(num_components);
+    for (std::uint32_t p = 0; p < n; ++p) {
+      comp_area[component[p]] += area(p);
+      comp_segment[component[p]] = segment[p];
+    }
+    // Per segment with extra components, keep its largest (ties: smallest id).
+    std::vector<std::vector<std::uint32_t>> of_segment(num_segments);
+    for (std::uint32_t c = 0; c < num_components; ++c)
+      if (count[comp_segment[c]] > components_before[comp_segment[c]])
+        of_segment[comp_segment[c]].push_back(c);
+    std::vector<char> stray(num_components, 0);
+    for (std::size_t x = 0; x < num_segments; ++x) {
+      auto& list = of_segment[x];
+      std::stable_sort(list.begin(), list.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return comp_area[a] > comp_area[b];
+      });
+      for (std::size_t i = components_before[x]; i < list.size(); ++i)
+        stray[list[i]] = 1;
+    }
+    // Each stray piece's contacts with other segments, then it moves to the largest.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> contact;
+    for (std::uint32_t p = 0; p < n; ++p)
+      if (stray[component[p]])
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (segment[q] != segment[p])
+            ++contact[{component[p], segment[q]}];
+        }
+    std::vector<std::uint32_t> target(num_components, std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::size_t> best(num_components, 0);
+    for (const auto& [key, c] : contact)
+      if (c > best[key.first]) {
+        best[key.first] = c;
+        target[key.first] = key.second;
+      }
+    for (std::uint32_t p = 0; p < n; ++p)
+      if (stray[component[p]] && target[component[p]] != std::numeric_limits<std::uint32_t>::max())
+        segment[p] = target[component[p]];
+  }
+  std::size_t changed = 0;
+  for (std::size_t p = 0; p < n; ++p)
+    changed += segment[p] != original[p];
+  return changed;
+}
+
+} // namespace pcl_ncut_seg
