@@ -63,6 +63,7 @@ struct Options {
   double bridge_gap = -1;
   double concavity = -1;
   double flat = -1;
+  double crease = -1;
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -94,6 +95,7 @@ void printHelp() {
          "  -bridge F         setBridgeGap (default: the library's default)\n"
          "  -concavity W      setConcavityWeight (default: the library's default)\n"
          "  -flat E           setFlatElongation (default: the library's default)\n"
+         "  -crease C         setCreaseSplit (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -195,6 +197,8 @@ Options parseOptions(int argc, char** argv) {
       o.concavity = parseNumber(a, v);
     } else if (a == "-flat") {
       o.flat = parseNumber(a, v);
+    } else if (a == "-crease") {
+      o.crease = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
     } else if (a == "-gapfloor") {
@@ -269,10 +273,13 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setConcavityWeight(o.concavity);
   if (o.flat >= 0)
     seg.setFlatElongation(o.flat);
+  if (o.crease >= 0)
+    seg.setCreaseSplit(o.crease);
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
+    seg.setCreaseSplit(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

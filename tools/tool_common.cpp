@@ -273,6 +273,10 @@ std::vector<Flag> algorithmFlags() {
                "flat patches: between two supernodes with feature height < E sqrt(feature "
                "area), eq. (9) leaves out the width ratio, >= 0; 0 = off",
                num(d.getFlatElongation()), 0),
+      realFlag("-crease", "C",
+               "crease splits: split a supernode along its most concave level cut of the "
+               "centrality when that cut's mean concave bend is >= C, >= 0; 0 = off",
+               num(d.getCreaseSplit()), 0),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -285,8 +289,9 @@ std::vector<Flag> algorithmFlags() {
               num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernodes that meet at no saddle, no bridging of kNN-graph "
-                           "components, no concavity term, no flat patches, recursive bisection while "
-                           "NCut <= T instead of the largest-gap rule, exact centrality"),
+                           "components, no concavity term, no flat patches, no crease splits, "
+                           "recursive bisection while NCut <= T instead of the largest-gap rule, "
+                           "exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
       realFlag("-face_angle", "DEG",
@@ -352,6 +357,8 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setConcavityWeight(flags.real("-concavity"));
   if (flags.has("-flat"))
     seg.setFlatElongation(flags.real("-flat"));
+  if (flags.has("-crease"))
+    seg.setCreaseSplit(flags.real("-crease"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-min_fraction"))
@@ -368,6 +375,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
+    seg.setCreaseSplit(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;
