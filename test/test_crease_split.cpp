@@ -153,7 +153,7 @@ TEST(CreaseSplit, SeparatesPartsThatShareASupernode) {
   for (std::uint64_t seed : {1, 2, 3}) {
     const test::LabeledShape shape = test::makeQuadruped(4000, seed);
     const std::vector<int> off = refinedSupernodes(shape, 0.0);
-    const std::vector<int> on = refinedSupernodes(shape, 0.5);
+    const std::vector<int> on = refinedSupernodes(shape, Segmenter().getCreaseSplit());
     const double before = offMajorityShare(off, shape.labels);
     const double after = offMajorityShare(on, shape.labels);
     std::cout << "quadruped seed " << seed << ": " << std::set<int>(off.begin(), off.end()).size()
@@ -168,7 +168,7 @@ TEST(CreaseSplit, SeparatesPartsThatShareASupernode) {
 
 TEST(CreaseSplit, SetterChecksItsValueAndZeroIsThePaper) {
   Segmenter seg;
-  EXPECT_EQ(seg.getCreaseSplit(), 0.0);
+  EXPECT_EQ(seg.getCreaseSplit(), 0.75);
   seg.setCreaseSplit(0.5);
   EXPECT_EQ(seg.getCreaseSplit(), 0.5);
   seg.setCreaseSplit(-1.0);

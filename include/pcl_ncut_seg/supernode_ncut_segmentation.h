@@ -230,7 +230,7 @@ public:
    * the model's mean bend per kNN edge) is at least c and each side keeps the small-supernode
    * area fraction (a head or a tail that rises into the body without a saddle gets a
    * supernode of its own; the top of a supernode created at a saddle goes to the supernodes
-   * that terminate there); >= 0, default 0 = off (the paper). Changing it invalidates the
+   * that terminate there); >= 0, default 0.75, 0 = off (the paper). Changing it invalidates the
    * expensive stage. */
   void setCreaseSplit(double concavity);
   double getCreaseSplit() const { return crease_split_; }
@@ -306,7 +306,7 @@ protected:
   unsigned num_threads_ = 0;
   bool cad_mode_ = false;
   double bridge_gap_ = 3.0;
-  double crease_split_ = 0.0; ///< setCreaseSplit
+  double crease_split_ = 0.75; ///< setCreaseSplit
   pcl_ncut_seg::CadParams cad_;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;

@@ -18,7 +18,7 @@ struct CreaseSplitParams {
   /// A supernode is split where the level cut of f through it is at least this concave (the
   /// mean concave bend of the kNN edges it crosses, in units of the mean |bend| of all edges,
   /// as in contactConcavity()); 0 = no split (the paper).
-  double min_concavity = 0.0;
+  double min_concavity = 0.75;
   /// Each side of a split keeps at least this fraction of the total feature area (the small
   /// supernode threshold of Sec. 4.3).
   float area_fraction = 0.01f;
