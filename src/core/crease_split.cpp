@@ -28,8 +28,11 @@ std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
 Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
                           const std::vector<float>& normals, const std::vector<float>& f,
                           const std::vector<float>& radii, const Supernodes& input,
-                          const CreaseSplitParams& params) {
+                          const CreaseSplitParams& params, std::size_t* num_splits) {
   Supernodes sn = input;
+  std::size_t splits = 0;
+  if (num_splits)
+    *num_splits = 0;
   const std::size_t n = graph.numVertices();
   if (!(params.min_concavity > 0.0) || n == 0 || sn.size() == 0)
     return sn;
@@ -66,6 +69,10 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   for (std::uint32_t p : order)
     points[sn.label[p]].push_back(p);
 
+  auto descending = [&](std::uint32_t a, std::uint32_t b) {
+    return f[a] > f[b] || (f[a] == f[b] && a < b);
+  };
+  std::vector<char> unsorted(sn.size(), 0); // points gained by a merge-up, sorted when tested
   std::vector<char> in_top(n, 0);
   std::deque<std::uint32_t> queue;
   for (std::uint32_t s = 0; s < sn.size(); ++s)
@@ -73,6 +80,10 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   while (!queue.empty()) {
     const std::uint32_t s = queue.front();
     queue.pop_front();
+    if (unsorted[s]) {
+      std::sort(points[s].begin(), points[s].end(), descending);
+      unsorted[s] = 0;
+    }
     const std::vector<std::uint32_t>& pts = points[s];
     double area = 0.0;
     for (std::uint32_t p : pts)
@@ -149,24 +160,21 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         sn.label[p] = to;
         points[to].push_back(p);
       }
-      for (std::uint32_t t : kids) {
-        std::vector<std::uint32_t>& kp = points[t];
-        std::sort(kp.begin(), kp.end(), [&](std::uint32_t a, std::uint32_t b) {
-          return f[a] > f[b] || (f[a] == f[b] && a < b);
-        });
-      }
+      for (std::uint32_t t : kids)
+        unsorted[t] = 1;
       if (stay.size() == top.size())
         continue; // nothing moved: s stays as it is
-      bottom.insert(bottom.begin(), stay.begin(), stay.end());
-      std::sort(bottom.begin(), bottom.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return f[a] > f[b] || (f[a] == f[b] && a < b);
-      });
-      points[s] = std::move(bottom);
+      ++splits;
+      // The points that stay precede the bottom in f: both stay in descending order.
+      stay.insert(stay.end(), bottom.begin(), bottom.end());
+      points[s] = std::move(stay);
       sn.origin[s] = points[s].front();
       queue.push_back(s);
     } else {
       // The top becomes a supernode that terminates at the bottom's highest point.
       const auto t = static_cast<std::uint32_t>(sn.size());
+      ++splits;
+      unsorted.push_back(0);
       sn.origin.push_back(sn.origin[s]);
       sn.at_saddle.push_back(sn.at_saddle[s]);
       sn.parent.push_back(s);
@@ -183,6 +191,10 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     }
   }
 
+  if (num_splits)
+    *num_splits = splits;
+  if (splits == 0)
+    return input;
   // Compact ids in order of each supernode's first point (by index).
   const std::size_t m = sn.size();
   std::vector<std::uint32_t> id(m, kNone);

@@ -43,10 +43,11 @@ struct CreaseSplitParams {
  * \param[in] normals  3 floats per vertex, oriented (orientedNormals() in core/concavity.h)
  * \param[in] f        centrality per vertex
  * \param[in] radii    r(p) per vertex (pointRadii()); a point's area is pi r(p)^2
- * \param[in] input    the refined supernodes */
+ * \param[in] input    the refined supernodes
+ * \param[out] num_splits  if not null, the number of splits made (0: the output is the input) */
 Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
                           const std::vector<float>& normals, const std::vector<float>& f,
                           const std::vector<float>& radii, const Supernodes& input,
-                          const CreaseSplitParams& params);
+                          const CreaseSplitParams& params, std::size_t* num_splits = nullptr);
 
 } // namespace pcl_ncut_seg

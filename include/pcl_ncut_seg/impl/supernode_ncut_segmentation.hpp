@@ -560,10 +560,14 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
       pcl_ncut_seg::CreaseSplitParams crease;
       crease.min_concavity = crease_split_;
       crease.area_fraction = area_fraction_;
+      std::size_t splits = 0;
       a.supernodes = pcl_ncut_seg::splitAtCreases(a.graph, xyz.data(), normals, a.centrality.f,
-                                                  a.radii, a.supernodes, crease);
-      a.stats = pcl_ncut_seg::featureStats(a.supernodes, a.centrality.f, a.radii);
-      a.conn = pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+                                                  a.radii, a.supernodes, crease, &splits);
+      if (splits > 0) {
+        a.stats = pcl_ncut_seg::featureStats(a.supernodes, a.centrality.f, a.radii);
+        a.conn =
+            pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+      }
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - crease_start).count();
     }
