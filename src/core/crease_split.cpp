@@ -1,6 +1,7 @@
 // Splitting supernodes along concave creases (an extension of Sec. 4.3; see crease_split.h).
 #include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,17 +47,32 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
     return s / length;
   };
+  // Sums over fixed blocks of points, added in block order: the same for any thread count.
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<double> block_bend(blocks, 0.0), block_area(blocks, 0.0);
+  std::vector<std::size_t> block_edges(blocks, 0);
+  std::vector<double> point_area(n);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
+  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
+    const auto first_point = static_cast<std::uint32_t>(b * kBlock);
+    const auto last_point = static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock));
+    for (std::uint32_t p = first_point; p < last_point; ++p) {
+      point_area[p] = kPi * radii[p] * radii[p];
+      block_area[b] += point_area[p];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+        if (graph.targets[e] > p) {
+          block_bend[b] += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
+          ++block_edges[b];
+        }
+    }
+  }
   double total_bend = 0.0, total_area = 0.0;
   std::size_t edges = 0;
-  std::vector<double> point_area(n);
-  for (std::uint32_t p = 0; p < n; ++p) {
-    point_area[p] = kPi * radii[p] * radii[p];
-    total_area += point_area[p];
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-      if (graph.targets[e] > p) {
-        total_bend += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
-        ++edges;
-      }
+  for (std::size_t b = 0; b < blocks; ++b) {
+    total_bend += block_bend[b];
+    total_area += block_area[b];
+    edges += block_edges[b];
   }
   if (edges == 0 || !(total_bend > 0.0))
     return sn;
@@ -74,26 +90,19 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   };
   std::vector<char> unsorted(sn.size(), 0); // points gained by a merge-up, sorted when tested
   std::vector<char> in_top(n, 0);
-  std::deque<std::uint32_t> queue;
-  for (std::uint32_t s = 0; s < sn.size(); ++s)
-    queue.push_back(s);
-  while (!queue.empty()) {
-    const std::uint32_t s = queue.front();
-    queue.pop_front();
-    if (unsorted[s]) {
-      std::sort(points[s].begin(), points[s].end(), descending);
-      unsorted[s] = 0;
-    }
+  // The most concave level cut through s with min_area on each side: (concavity, number of
+  // points above it); concavity -1 when s is too small. Reads only s's points and in_top of
+  // s's points, so supernodes can be swept in parallel.
+  auto sweep = [&](std::uint32_t s) {
     const std::vector<std::uint32_t>& pts = points[s];
     double area = 0.0;
     for (std::uint32_t p : pts)
       area += point_area[p];
-    if (area < 2.0 * min_area)
-      continue;
-    // Sweep the level cut down through s.
     double sum = 0.0, top_area = 0.0, best = -1.0;
     std::int64_t count = 0;
     std::size_t best_end = 0;
+    if (area < 2.0 * min_area)
+      return std::make_pair(best, best_end);
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const std::uint32_t p = pts[i];
       in_top[p] = 1;
@@ -123,6 +132,29 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     }
     for (std::uint32_t p : pts)
       in_top[p] = 0;
+    return std::make_pair(best, best_end);
+  };
+  // First sweep of every supernode in parallel; a supernode that changes is swept again.
+  std::vector<std::pair<double, std::size_t>> first(sn.size());
+  std::vector<char> fresh(sn.size(), 1);
+  const auto num_supernodes = static_cast<std::ptrdiff_t>(sn.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
+  for (std::ptrdiff_t s = 0; s < num_supernodes; ++s)
+    first[s] = sweep(static_cast<std::uint32_t>(s));
+
+  std::deque<std::uint32_t> queue;
+  for (std::uint32_t s = 0; s < sn.size(); ++s)
+    queue.push_back(s);
+  while (!queue.empty()) {
+    const std::uint32_t s = queue.front();
+    queue.pop_front();
+    if (unsorted[s]) {
+      std::sort(points[s].begin(), points[s].end(), descending);
+      unsorted[s] = 0;
+    }
+    const std::vector<std::uint32_t>& pts = points[s];
+    const auto [best, best_end] = fresh[s] ? first[s] : sweep(s);
+    fresh[s] = 0;
     if (best < params.min_concavity)
       continue;
 
@@ -160,8 +192,10 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         sn.label[p] = to;
         points[to].push_back(p);
       }
-      for (std::uint32_t t : kids)
+      for (std::uint32_t t : kids) {
         unsorted[t] = 1;
+        fresh[t] = 0;
+      }
       if (stay.size() == top.size())
         continue; // nothing moved: s stays as it is
       ++splits;
@@ -175,6 +209,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       const auto t = static_cast<std::uint32_t>(sn.size());
       ++splits;
       unsorted.push_back(0);
+      fresh.push_back(0);
       sn.origin.push_back(sn.origin[s]);
       sn.at_saddle.push_back(sn.at_saddle[s]);
       sn.parent.push_back(s);

@@ -22,6 +22,9 @@ struct CreaseSplitParams {
   /// Each side of a split keeps at least this fraction of the total feature area (the small
   /// supernode threshold of Sec. 4.3).
   float area_fraction = 0.01f;
+  /// Threads for the first sweep of every supernode (0 = all cores); the result does not
+  /// depend on it.
+  unsigned num_threads = 0;
 };
 
 /** \brief Split refined supernodes along concave creases.

@@ -560,6 +560,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
       pcl_ncut_seg::CreaseSplitParams crease;
       crease.min_concavity = crease_split_;
       crease.area_fraction = area_fraction_;
+      crease.num_threads = num_threads_;
       std::size_t splits = 0;
       a.supernodes = pcl_ncut_seg::splitAtCreases(a.graph, xyz.data(), normals, a.centrality.f,
                                                   a.radii, a.supernodes, crease, &splits);
