@@ -47,19 +47,18 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
     return s / length;
   };
+  auto pointArea = [&](std::uint32_t p) { return kPi * radii[p] * radii[p]; }; // as Sec. 4.3
   // Sums over fixed blocks of points, added in block order: the same for any thread count.
   constexpr std::size_t kBlock = 4096;
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<double> block_bend(blocks, 0.0), block_area(blocks, 0.0);
   std::vector<std::size_t> block_edges(blocks, 0);
-  std::vector<double> point_area(n);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
   for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
     const auto first_point = static_cast<std::uint32_t>(b * kBlock);
     const auto last_point = static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock));
     for (std::uint32_t p = first_point; p < last_point; ++p) {
-      point_area[p] = kPi * radii[p] * radii[p];
-      block_area[b] += point_area[p];
+      block_area[b] += pointArea(p);
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
         if (graph.targets[e] > p) {
           block_bend[b] += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
@@ -80,9 +79,8 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   const double min_area = params.area_fraction * total_area;
 
   // Points of each supernode in descending f.
-  const std::vector<std::uint32_t> order = descendingOrder(f);
   std::vector<std::vector<std::uint32_t>> points(sn.size());
-  for (std::uint32_t p : order)
+  for (std::uint32_t p : descendingOrder(f))
     points[sn.label[p]].push_back(p);
 
   auto descending = [&](std::uint32_t a, std::uint32_t b) {
@@ -97,7 +95,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     const std::vector<std::uint32_t>& pts = points[s];
     double area = 0.0;
     for (std::uint32_t p : pts)
-      area += point_area[p];
+      area += pointArea(p);
     double sum = 0.0, top_area = 0.0, best = -1.0;
     std::int64_t count = 0;
     std::size_t best_end = 0;
@@ -106,7 +104,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const std::uint32_t p = pts[i];
       in_top[p] = 1;
-      top_area += point_area[p];
+      top_area += pointArea(p);
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         if (q == p || sn.label[q] != s)
