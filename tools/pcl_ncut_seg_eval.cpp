@@ -65,7 +65,8 @@ struct Options {
   double flat = -1;
   double neck = -1;       ///< setNeckExponent
   double neck_bound = -1; ///< setNeckBound
-  double band = -1, crease = -1; ///< setBoundaryBand, setBoundaryCreaseWeight
+  double band = -1, band_crease = -1; ///< setBoundaryBand, setBoundaryCreaseWeight
+  double crease = -1;       ///< setCreaseSplit
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -100,7 +101,8 @@ void printHelp() {
          "  -neck W           setNeckExponent, 0 = largest jump (default: the library's)\n"
          "  -neckbound K      setNeckBound (default: the library's default)\n"
          "  -band F           setBoundaryBand (default: the library's default)\n"
-         "  -crease W         setBoundaryCreaseWeight (default: the library's default)\n"
+         "  -bandcrease W     setBoundaryCreaseWeight (default: the library's default)\n"
+         "  -crease C         setCreaseSplit (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -204,6 +206,8 @@ Options parseOptions(int argc, char** argv) {
       o.flat = parseNumber(a, v);
     } else if (a == "-band") {
       o.band = parseNumber(a, v);
+    } else if (a == "-bandcrease") {
+      o.band_crease = parseNumber(a, v);
     } else if (a == "-crease") {
       o.crease = parseNumber(a, v);
     } else if (a == "-bridge") {
@@ -295,13 +299,16 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setBoundaryBand(o.band);
   if (o.band >= 0 && seg.getBoundaryBand() != o.band)
     fail("-band needs a value in [0, 0.5]");
+  if (o.band_crease >= 0)
+    seg.setBoundaryCreaseWeight(o.band_crease);
   if (o.crease >= 0)
-    seg.setBoundaryCreaseWeight(o.crease);
+    seg.setCreaseSplit(o.crease);
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
     seg.setBoundaryBand(0.0);
+    seg.setCreaseSplit(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

@@ -289,6 +289,10 @@ std::vector<Flag> algorithmFlags() {
                "boundary refinement: a kNN edge's cut cost is its length times exp(-W c), c "
                "its concave bend, >= 0",
                num(d.getBoundaryCreaseWeight()), 0),
+      realFlag("-crease", "C",
+               "crease splits: split a supernode along its most concave level cut of the "
+               "centrality when that cut's mean concave bend is >= C, >= 0; 0 = off",
+               num(d.getCreaseSplit()), 0),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -301,9 +305,9 @@ std::vector<Flag> algorithmFlags() {
               num(d.getNumberOfRepresentatives()), 100),
       switchFlag("-paper", "the paper to the letter: no feature-width normalisation, no joining "
                            "of supernodes that meet at no saddle, no bridging of kNN-graph "
-                           "components, no concavity term, no flat patches, no boundary "
-                           "refinement, recursive bisection while NCut <= T instead of the "
-                           "largest-gap rule, exact centrality"),
+                           "components, no concavity term, no flat patches, no crease splits, "
+                           "no boundary refinement, recursive bisection while NCut <= T instead "
+                           "of the largest-gap rule, exact centrality"),
       switchFlag("-cad", "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
                          "ridges"),
       realFlag("-face_angle", "DEG",
@@ -373,6 +377,8 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setNeckExponent(flags.real("-neck_exponent"));
   if (flags.has("-neck_bound"))
     seg.setNeckBound(flags.real("-neck_bound"));
+  if (flags.has("-crease"))
+    seg.setCreaseSplit(flags.real("-crease"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-boundary_band"))
@@ -395,6 +401,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
     seg.setBoundaryBand(0.0);
+    seg.setCreaseSplit(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;

@@ -259,6 +259,16 @@ public:
   void setBoundaryCreaseWeight(double weight);
   double getBoundaryCreaseWeight() const { return boundary_.crease_weight; }
 
+  /** \brief Crease splits: a supernode is split along the level cut of the centrality through
+   * it whose kNN edges are most concave on average, when that mean concave bend (relative to
+   * the model's mean bend per kNN edge) is at least c and each side keeps the small-supernode
+   * area fraction (a head or a tail that rises into the body without a saddle gets a
+   * supernode of its own; the top of a supernode created at a saddle goes to the supernodes
+   * that terminate there); >= 0, default 0.75, 0 = off (the paper). Changing it invalidates the
+   * expensive stage. */
+  void setCreaseSplit(double concavity);
+  double getCreaseSplit() const { return crease_split_; }
+
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
    * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);
@@ -330,6 +340,7 @@ protected:
   unsigned num_threads_ = 0;
   bool cad_mode_ = false;
   double bridge_gap_ = 3.0;
+  double crease_split_ = 0.75; ///< setCreaseSplit
   pcl_ncut_seg::CadParams cad_;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;

@@ -13,6 +13,7 @@
 
 #include <pcl_ncut_seg/core/bridging.h>
 #include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/core/morton.h>
 #include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/threads.h>
@@ -356,6 +357,19 @@ void pcl::SupernodeNCutSegmentation<PointT>::setBoundaryCreaseWeight(double weig
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setCreaseSplit(double concavity) {
+  if (!(concavity >= 0.0) || !std::isfinite(concavity)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setCreaseSplit] concavity must be finite and "
+              ">= 0, got %g; keeping %g.\n",
+              concavity, crease_split_);
+    return;
+  }
+  if (concavity != crease_split_)
+    invalidate();
+  crease_split_ = concavity;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
   if (!(share >= 0.0 && share <= 1.0)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
@@ -539,7 +553,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   if (bridge_gap_ > 0.0)
     pcl_ncut_seg::bridgeComponents(graph, xyz.data(), bridge_gap_);
   const bool refine_boundaries = !cad_mode_ && boundary_.band_fraction > 0.0;
-  if (!cad_mode_ && !(similarity_.concavity_weight > 0.0) && !refine_boundaries) // needed there
+  if (!cad_mode_ && !(similarity_.concavity_weight > 0.0) && !refine_boundaries &&
+      !(crease_split_ > 0.0)) // still needed by these
     std::vector<float>().swap(xyz);
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -582,14 +597,35 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   } else {
     analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
         pcl_ncut_seg::analyze(std::move(graph), params, times_));
+    std::vector<float> normals;
+    if (crease_split_ > 0.0) {
+      // Split supernodes along concave creases (core/crease_split.h): refinement time.
+      const auto crease_start = std::chrono::steady_clock::now();
+      pcl_ncut_seg::Analysis& a = *analysis_;
+      normals = pcl_ncut_seg::orientedNormals(a.graph, xyz.data(), num_threads_);
+      pcl_ncut_seg::CreaseSplitParams crease;
+      crease.min_concavity = crease_split_;
+      crease.area_fraction = area_fraction_;
+      crease.num_threads = num_threads_;
+      std::size_t splits = 0;
+      a.supernodes = pcl_ncut_seg::splitAtCreases(a.graph, xyz.data(), normals, a.centrality.f,
+                                                  a.radii, a.supernodes, crease, &splits);
+      if (splits > 0) {
+        a.stats = pcl_ncut_seg::featureStats(a.supernodes, a.centrality.f, a.radii);
+        a.conn =
+            pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+      }
+      times_.refinement +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - crease_start).count();
+    }
     if (similarity_.concavity_weight > 0.0 || refine_boundaries) {
       // Measured between the supernodes, like eq. (8): its time counts as refinement time.
       const auto concavity_start = std::chrono::steady_clock::now();
-      const std::vector<float> normals =
-          pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data(), num_threads_);
+      if (normals.empty())
+        normals = pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data(), num_threads_);
       if (similarity_.concavity_weight > 0.0)
-        analysis_->concavity = pcl_ncut_seg::contactConcavity(analysis_->graph, xyz.data(),
-                                                              normals, analysis_->supernodes.label);
+        analysis_->concavity = pcl_ncut_seg::contactConcavity(
+            analysis_->graph, xyz.data(), normals, analysis_->supernodes.label);
       if (refine_boundaries)
         analysis_->crease = pcl_ncut_seg::edgeCreases(analysis_->graph, xyz.data(), normals);
       times_.refinement +=

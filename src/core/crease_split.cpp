@@ -1,0 +1,260 @@
+// Splitting supernodes along concave creases (an extension of Sec. 4.3; see crease_split.h).
+#include <pcl_ncut_seg/core/crease_split.h>
+#include <pcl_ncut_seg/core/radix_sort.h>
+#include <pcl_ncut_seg/core/threads.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <deque>
+
+namespace pcl_ncut_seg {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+/// The vertices by descending f, ties by ascending index (as extractSupernodes()).
+std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
+  std::vector<std::uint32_t> key(f.size());
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    const float v = f[i] == 0.0f ? 0.0f : f[i];
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+    key[i] = ~bits;
+  }
+  return stableOrderByKey(key);
+}
+} // namespace
+
+Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
+                          const std::vector<float>& normals, const std::vector<float>& f,
+                          const std::vector<float>& radii, const Supernodes& input,
+                          const CreaseSplitParams& params, std::size_t* num_splits) {
+  Supernodes sn = input;
+  std::size_t splits = 0;
+  if (num_splits)
+    *num_splits = 0;
+  const std::size_t n = graph.numVertices();
+  if (!(params.min_concavity > 0.0) || n == 0 || sn.size() == 0)
+    return sn;
+
+  // Signed bend of an edge (> 0 convex, < 0 concave), as contactConcavity().
+  auto bend = [&](std::uint32_t p, std::uint32_t q, float length) {
+    if (!(length > 0.0f))
+      return 0.0;
+    double s = 0.0;
+    for (int d = 0; d < 3; ++d)
+      s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
+    return s / length;
+  };
+  auto pointArea = [&](std::uint32_t p) { return kPi * radii[p] * radii[p]; }; // as Sec. 4.3
+  // Sums over fixed blocks of points, added in block order: the same for any thread count.
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<double> block_bend(blocks, 0.0), block_area(blocks, 0.0);
+  std::vector<std::size_t> block_edges(blocks, 0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
+  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
+    const auto first_point = static_cast<std::uint32_t>(b * kBlock);
+    const auto last_point = static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock));
+    for (std::uint32_t p = first_point; p < last_point; ++p) {
+      block_area[b] += pointArea(p);
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+        if (graph.targets[e] > p) {
+          block_bend[b] += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
+          ++block_edges[b];
+        }
+    }
+  }
+  double total_bend = 0.0, total_area = 0.0;
+  std::size_t edges = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    total_bend += block_bend[b];
+    total_area += block_area[b];
+    edges += block_edges[b];
+  }
+  if (edges == 0 || !(total_bend > 0.0))
+    return sn;
+  const double typical = total_bend / static_cast<double>(edges);
+  const double min_area = params.area_fraction * total_area;
+
+  // Points of each supernode in descending f.
+  std::vector<std::vector<std::uint32_t>> points(sn.size());
+  for (std::uint32_t p : descendingOrder(f))
+    points[sn.label[p]].push_back(p);
+
+  auto descending = [&](std::uint32_t a, std::uint32_t b) {
+    return f[a] > f[b] || (f[a] == f[b] && a < b);
+  };
+  std::vector<char> unsorted(sn.size(), 0); // points gained by a merge-up, sorted when tested
+  std::vector<char> in_top(n, 0);
+  // The most concave level cut through s with min_area on each side: (concavity, number of
+  // points above it); concavity -1 when s is too small. Reads only s's points and in_top of
+  // s's points, so supernodes can be swept in parallel.
+  auto sweep = [&](std::uint32_t s) {
+    const std::vector<std::uint32_t>& pts = points[s];
+    double area = 0.0;
+    for (std::uint32_t p : pts)
+      area += pointArea(p);
+    double sum = 0.0, top_area = 0.0, best = -1.0;
+    std::int64_t count = 0;
+    std::size_t best_end = 0;
+    if (area < 2.0 * min_area)
+      return std::make_pair(best, best_end);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const std::uint32_t p = pts[i];
+      in_top[p] = 1;
+      top_area += pointArea(p);
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (q == p || sn.label[q] != s)
+          continue;
+        const double c = std::max(0.0, -bend(p, q, graph.lengths[e])) / typical;
+        if (in_top[q]) {
+          sum -= c;
+          --count;
+        } else {
+          sum += c;
+          ++count;
+        }
+      }
+      if (i + 1 < pts.size() && f[pts[i + 1]] == f[p])
+        continue; // not a level cut
+      if (count > 0 && top_area >= min_area && area - top_area >= min_area) {
+        const double concavity = sum / static_cast<double>(count);
+        if (concavity > best) {
+          best = concavity;
+          best_end = i + 1;
+        }
+      }
+    }
+    for (std::uint32_t p : pts)
+      in_top[p] = 0;
+    return std::make_pair(best, best_end);
+  };
+  // First sweep of every supernode in parallel; a supernode that changes is swept again.
+  std::vector<std::pair<double, std::size_t>> first(sn.size());
+  std::vector<char> fresh(sn.size(), 1);
+  const auto num_supernodes = static_cast<std::ptrdiff_t>(sn.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
+  for (std::ptrdiff_t s = 0; s < num_supernodes; ++s)
+    first[s] = sweep(static_cast<std::uint32_t>(s));
+
+  std::deque<std::uint32_t> queue;
+  for (std::uint32_t s = 0; s < sn.size(); ++s)
+    queue.push_back(s);
+  while (!queue.empty()) {
+    const std::uint32_t s = queue.front();
+    queue.pop_front();
+    if (unsorted[s]) {
+      std::sort(points[s].begin(), points[s].end(), descending);
+      unsorted[s] = 0;
+    }
+    const std::vector<std::uint32_t>& pts = points[s];
+    const auto [best, best_end] = fresh[s] ? first[s] : sweep(s);
+    fresh[s] = 0;
+    if (best < params.min_concavity)
+      continue;
+
+    std::vector<std::uint32_t> top(pts.begin(), pts.begin() + best_end);
+    std::vector<std::uint32_t> bottom(pts.begin() + best_end, pts.end());
+    if (!sn.children[s].empty()) {
+      // Merge-up: the top joins the supernodes that terminate at s's saddle, grown from them
+      // highest f first; a point none of whose processed neighbours is in them stays below.
+      const std::vector<std::uint32_t>& kids = sn.children[s];
+      std::vector<std::uint32_t> stay;
+      std::vector<std::pair<std::uint32_t, std::uint32_t>> counts;
+      for (std::uint32_t p : top) {
+        counts.clear();
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t t = sn.label[graph.targets[e]];
+          if (std::find(kids.begin(), kids.end(), t) == kids.end())
+            continue;
+          auto it = std::find_if(counts.begin(), counts.end(),
+                                 [t](const auto& c) { return c.first == t; });
+          if (it == counts.end())
+            counts.emplace_back(t, 1);
+          else
+            ++it->second;
+        }
+        std::uint32_t to = kNone, most = 0;
+        for (const auto& c : counts)
+          if (c.second > most || (c.second == most && c.first < to)) {
+            to = c.first;
+            most = c.second;
+          }
+        if (to == kNone) {
+          stay.push_back(p);
+          continue;
+        }
+        sn.label[p] = to;
+        points[to].push_back(p);
+      }
+      for (std::uint32_t t : kids) {
+        unsorted[t] = 1;
+        fresh[t] = 0;
+      }
+      if (stay.size() == top.size())
+        continue; // nothing moved: s stays as it is
+      ++splits;
+      // The points that stay precede the bottom in f: both stay in descending order.
+      stay.insert(stay.end(), bottom.begin(), bottom.end());
+      points[s] = std::move(stay);
+      sn.origin[s] = points[s].front();
+      queue.push_back(s);
+    } else {
+      // The top becomes a supernode that terminates at the bottom's highest point.
+      const auto t = static_cast<std::uint32_t>(sn.size());
+      ++splits;
+      unsorted.push_back(0);
+      fresh.push_back(0);
+      sn.origin.push_back(sn.origin[s]);
+      sn.at_saddle.push_back(sn.at_saddle[s]);
+      sn.parent.push_back(s);
+      sn.children.push_back({});
+      for (std::uint32_t p : top)
+        sn.label[p] = t;
+      points.push_back(std::move(top));
+      points[s] = std::move(bottom);
+      sn.origin[s] = points[s].front();
+      sn.at_saddle[s] = true;
+      sn.children[s].push_back(t);
+      queue.push_back(s);
+      queue.push_back(t);
+    }
+  }
+
+  if (num_splits)
+    *num_splits = splits;
+  if (splits == 0)
+    return input;
+  // Compact ids in order of each supernode's first point (by index).
+  const std::size_t m = sn.size();
+  std::vector<std::uint32_t> id(m, kNone);
+  std::uint32_t next = 0;
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (id[sn.label[p]] == kNone)
+      id[sn.label[p]] = next++;
+  Supernodes out;
+  out.label.resize(n);
+  for (std::uint32_t p = 0; p < n; ++p)
+    out.label[p] = id[sn.label[p]];
+  out.origin.resize(next);
+  out.at_saddle.resize(next);
+  out.parent.assign(next, kNone);
+  out.children.resize(next);
+  for (std::uint32_t s = 0; s < m; ++s) {
+    if (id[s] == kNone)
+      continue;
+    out.origin[id[s]] = sn.origin[s];
+    out.at_saddle[id[s]] = sn.at_saddle[s];
+    if (sn.parent[s] != kNone && id[sn.parent[s]] != kNone)
+      out.parent[id[s]] = id[sn.parent[s]];
+  }
+  for (std::uint32_t s = 0; s < next; ++s)
+    if (out.parent[s] != kNone)
+      out.children[out.parent[s]].push_back(s);
+  return out;
+}
+
+} // namespace pcl_ncut_seg
