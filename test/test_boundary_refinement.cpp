@@ -49,9 +49,11 @@ struct Segmented {
 };
 
 Segmented segment(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int count, double band,
-                  unsigned threads = 0) {
+                  unsigned threads = 0, double crease_split = -1) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
+  if (crease_split >= 0)
+    seg.setCreaseSplit(crease_split);
   if (count > 0)
     seg.setNumberOfSegments(count);
   seg.setBoundaryBand(band);
@@ -172,8 +174,10 @@ TEST(BoundaryRefinement, DumbbellBoundaryMovesToACrease) {
   int checked = 0;
   for (std::uint64_t seed : {1, 2, 3, 4, 5}) {
     const test::LabeledShape shape = test::makeDumbbell(6000, seed);
-    const Segmented plain = segment(shape.cloud, 2, 0.0);
-    const Segmented refined = segment(shape.cloud, 2, 0.2);
+    // Crease splits off: they already move the supernodes' boundary to the dumbbell's creases,
+    // and this test needs a boundary off the crease for the refinement to move.
+    const Segmented plain = segment(shape.cloud, 2, 0.0, 0, 0.0);
+    const Segmented refined = segment(shape.cloud, 2, 0.2, 0, 0.0);
     ASSERT_EQ(plain.segments, 2u);
     ASSERT_EQ(refined.segments, 2u);
     auto barShare = [&](const Segmented& run) {
