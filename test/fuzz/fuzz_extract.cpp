@@ -12,8 +12,9 @@
  *   - the same labels with another number of threads.
  * The (up to two) bytes after the points choose the options beyond the paper (bridging, concave
  * creases, flat patches, largest-gap stopping, joining touching supernodes, exact centrality,
- * CAD mode), flags 0x08 and 0x80 the short-cut rule's; zeros, as in most of the corpus, keep
- * the defaults.
+ * CAD mode), flags 0x08 and 0x80 the short-cut rule's, the samples byte's high bits the
+ * boundary refinement's and the crease splits'; zeros, as in most of the corpus, keep the
+ * defaults.
  * Built with libFuzzer by -DPCL_NCUT_SEG_BUILD_FUZZERS=ON (clang); replay_main.cpp runs a
  * corpus through it without libFuzzer (the FuzzCorpus test).
  */
@@ -95,7 +96,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const double kPositive[] = {1e-300, 1e-3, 0.1, 0.5, 1, 2, 10, 1e3, 1e300};
   static const double kThreshold[] = {0, 1e-3, 0.02, 0.1, 0.5, 1, 10, 1e300};
   const int k = 2 + in.next() % 15;
-  const int samples = in.next() % 8;
+  // The samples byte's low 3 bits; its high 5 bits set the boundary refinement and the crease
+  // splits (0 keeps the defaults).
+  const std::uint8_t samples_byte = in.next();
+  const int samples = samples_byte % 8;
+  const int later_options = samples_byte >> 3;
   const float crossing = in.next() / 255.0f, area = in.next() / 255.0f, height = in.next() / 255.0f;
   const double beta = kPositive[in.next() % 9], alpha1 = kPositive[in.next() % 9],
                alpha2 = kPositive[in.next() % 9];
@@ -199,6 +204,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setMinSegmentFraction(0.25);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
+    static const double kBand[] = {0, 0, 0.5, 1e-3}, kCreaseSplit[] = {0, 0, 1e-6, 1e3};
+    if (later_options & 3)
+      seg.setBoundaryBand(kBand[later_options & 3]);
+    if (later_options & 4)
+      seg.setBoundaryCreaseWeight(1e3);
+    if ((later_options >> 3) & 3)
+      seg.setCreaseSplit(kCreaseSplit[(later_options >> 3) & 3]);
     // The short-cut stopping rule: flag 0x08 turns it off, 0x80 sets extremes.
     if (flags & 0x08)
       seg.setNeckExponent(0);
@@ -243,6 +255,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   seg.setAlpha2(kPositive[flags % 9]);
   seg.setFlatElongation(options1 & 0x20 ? 0.0 : 0.2);
   seg.setNeckBound(flags & 0x08 ? 1e-3 : 0.5);
+  seg.setBoundaryCreaseWeight(later_options & 4 ? 0.0 : 3.0);
   seg.extract(segments);
   FUZZ_CHECK(!segments.empty());
   checkPartition(segments, wanted);

@@ -3,7 +3,8 @@
 Layout, as fuzz_extract.cpp reads it: 14 parameter bytes (flags, k, samples, crossing, area,
 height, beta, alpha1, alpha2, threshold, segments, splits, threads, scale), then 3 signed bytes
 per point (-128 = NaN, 127 = infinity), then up to two bytes of options beyond the paper (see
-fuzz_extract.cpp; none or zeros keep the defaults)."""
+fuzz_extract.cpp; none or zeros keep the defaults); the samples byte's high 5 bits set the
+boundary refinement and the crease splits."""
 import math
 import os
 import struct
@@ -56,6 +57,8 @@ seeds = {
     "sphere_cad": params() + pts(sphere(150, 60)) + bytes([0x80]),
     "dumbbell_extremes": params(flags=0x07, segments=0) + pts(
         sphere(90, 30, (-70, 0, 0)) + sphere(90, 30, (70, 0, 0))) + bytes([0x3F, 0xC2]),
+    "dumbbell_band_crease_extremes": params(flags=0x07, segments=0, samples=(0x2 | 0x4 | 0x10) << 3) + pts(
+        sphere(90, 30, (-70, 0, 0)) + sphere(90, 30, (70, 0, 0))),
     "two_spheres_paper": params(flags=0x07, threads=2) + pts(
         sphere(80, 20, (-90, 0, 0)) + sphere(80, 20, (90, 0, 0))) + bytes([0x55, 0x30]),
 }
