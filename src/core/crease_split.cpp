@@ -86,8 +86,8 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   auto descending = [&](std::uint32_t a, std::uint32_t b) {
     return f[a] > f[b] || (f[a] == f[b] && a < b);
   };
-  std::vector<char> unsorted(sn.size(), 0); // points gained by a merge-up, sorted when tested
   std::vector<char> in_top(n, 0);
+  static constexpr double kSign[2] = {1.0, -1.0};
   // The most concave level cut through s with min_area on each side: (concavity, number of
   // points above it); concavity -1 when s is too small. Reads only s's points and in_top of
   // s's points, so supernodes can be swept in parallel.
@@ -109,14 +109,12 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         const std::uint32_t q = graph.targets[e];
         if (q == p || sn.label[q] != s)
           continue;
+        // sum -= c when q is in the top already, else sum += c, without a branch (the two
+        // are equally likely, and -1 * c is exact).
         const double c = std::max(0.0, -bend(p, q, graph.lengths[e])) / typical;
-        if (in_top[q]) {
-          sum -= c;
-          --count;
-        } else {
-          sum += c;
-          ++count;
-        }
+        const int above = in_top[q];
+        sum += kSign[above] * c;
+        count += 1 - 2 * above;
       }
       if (i + 1 < pts.size() && f[pts[i + 1]] == f[p])
         continue; // not a level cut
@@ -146,10 +144,6 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   while (!queue.empty()) {
     const std::uint32_t s = queue.front();
     queue.pop_front();
-    if (unsorted[s]) {
-      std::sort(points[s].begin(), points[s].end(), descending);
-      unsorted[s] = 0;
-    }
     const std::vector<std::uint32_t>& pts = points[s];
     const auto [best, best_end] = fresh[s] ? first[s] : sweep(s);
     fresh[s] = 0;
@@ -164,6 +158,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       const std::vector<std::uint32_t>& kids = sn.children[s];
       std::vector<std::uint32_t> stay;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> counts;
+      std::vector<std::size_t> old_size(kids.size());
+      for (std::size_t k = 0; k < kids.size(); ++k)
+        old_size[k] = points[kids[k]].size();
       for (std::uint32_t p : top) {
         counts.clear();
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -190,9 +187,12 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         sn.label[p] = to;
         points[to].push_back(p);
       }
-      for (std::uint32_t t : kids) {
-        unsorted[t] = 1;
-        fresh[t] = 0;
+      // A kid's points and those it gained are each in descending f: merge the two runs.
+      for (std::size_t k = 0; k < kids.size(); ++k) {
+        std::vector<std::uint32_t>& kid = points[kids[k]];
+        std::inplace_merge(kid.begin(), kid.begin() + static_cast<std::ptrdiff_t>(old_size[k]),
+                           kid.end(), descending);
+        fresh[kids[k]] = 0;
       }
       if (stay.size() == top.size())
         continue; // nothing moved: s stays as it is
@@ -206,7 +206,6 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       // The top becomes a supernode that terminates at the bottom's highest point.
       const auto t = static_cast<std::uint32_t>(sn.size());
       ++splits;
-      unsorted.push_back(0);
       fresh.push_back(0);
       sn.origin.push_back(sn.origin[s]);
       sn.at_saddle.push_back(sn.at_saddle[s]);
