@@ -88,6 +88,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   };
   std::vector<char> in_top(n, 0);
   static constexpr double kSign[2] = {1.0, -1.0};
+  constexpr std::size_t kAhead = 8;
   // The most concave level cut through s with min_area on each side: (concavity, number of
   // points above it); concavity -1 when s is too small. Reads only s's points and in_top of
   // s's points, so supernodes can be swept in parallel.
@@ -102,6 +103,19 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     if (area < 2.0 * min_area)
       return std::make_pair(best, best_end);
     for (std::size_t i = 0; i < pts.size(); ++i) {
+      // Points in f order are scattered in memory: fetch the data of those a few steps ahead.
+      if (i + 2 * kAhead < pts.size())
+        __builtin_prefetch(&graph.offsets[pts[i + 2 * kAhead]]);
+      if (i + kAhead < pts.size()) {
+        const std::uint32_t a = pts[i + kAhead];
+        __builtin_prefetch(&graph.targets[graph.offsets[a]]);
+        __builtin_prefetch(&graph.lengths[graph.offsets[a]]);
+        __builtin_prefetch(&normals[3 * a]);
+        __builtin_prefetch(&xyz[3 * a]);
+        __builtin_prefetch(&sn.label[a]);
+        __builtin_prefetch(&in_top[a]);
+        __builtin_prefetch(&radii[a]);
+      }
       const std::uint32_t p = pts[i];
       in_top[p] = 1;
       top_area += pointArea(p);
