@@ -144,22 +144,37 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       in_top[p] = 0;
     return std::make_pair(best, best_end);
   };
-  // First sweep of every supernode in parallel; a supernode that changes is swept again.
+  // Every supernode in the queue is tested in turn. The sweeps of all those in the queue
+  // whose points changed since their last sweep (all at first) are made ahead, in parallel,
+  // biggest first; a sweep depends only on the points of its supernode, and a supernode whose
+  // points change later is swept again, so the result does not depend on the threads.
   std::vector<std::pair<double, std::size_t>> first(sn.size());
-  std::vector<char> fresh(sn.size(), 1);
-  const auto num_supernodes = static_cast<std::ptrdiff_t>(sn.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
-  for (std::ptrdiff_t s = 0; s < num_supernodes; ++s)
-    first[s] = sweep(static_cast<std::uint32_t>(s));
-
+  std::vector<char> fresh(sn.size(), 0); // first[s] is the sweep of s's current points
+  const int threads = usableThreads(params.num_threads);
   std::deque<std::uint32_t> queue;
   for (std::uint32_t s = 0; s < sn.size(); ++s)
     queue.push_back(s);
+  std::vector<std::uint32_t> ahead;
   while (!queue.empty()) {
+    if (!fresh[queue.front()]) {
+      ahead.clear();
+      for (std::uint32_t s : queue)
+        if (!fresh[s]) {
+          fresh[s] = 1; // also keeps s out of ahead twice
+          ahead.push_back(s);
+        }
+      std::stable_sort(ahead.begin(), ahead.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return points[a].size() > points[b].size();
+      });
+      const auto num_ahead = static_cast<std::ptrdiff_t>(ahead.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+      for (std::ptrdiff_t k = 0; k < num_ahead; ++k)
+        first[ahead[k]] = sweep(ahead[k]);
+    }
     const std::uint32_t s = queue.front();
     queue.pop_front();
     const std::vector<std::uint32_t>& pts = points[s];
-    const auto [best, best_end] = fresh[s] ? first[s] : sweep(s);
+    const auto [best, best_end] = first[s];
     fresh[s] = 0;
     if (best < params.min_concavity)
       continue;
@@ -221,6 +236,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       const auto t = static_cast<std::uint32_t>(sn.size());
       ++splits;
       fresh.push_back(0);
+      first.emplace_back();
       sn.origin.push_back(sn.origin[s]);
       sn.at_saddle.push_back(sn.at_saddle[s]);
       sn.parent.push_back(s);
