@@ -12,6 +12,15 @@ namespace pcl_ncut_seg {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
+/// A hint to fetch what \a p points to into the cache (no effect where unsupported).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 /// The vertices by descending f, ties by ascending index (as extractSupernodes()).
 std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
   std::vector<std::uint32_t> key(f.size());
@@ -105,16 +114,16 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     for (std::size_t i = 0; i < pts.size(); ++i) {
       // Points in f order are scattered in memory: fetch the data of those a few steps ahead.
       if (i + 2 * kAhead < pts.size())
-        __builtin_prefetch(&graph.offsets[pts[i + 2 * kAhead]]);
+        prefetch(&graph.offsets[pts[i + 2 * kAhead]]);
       if (i + kAhead < pts.size()) {
         const std::uint32_t a = pts[i + kAhead];
-        __builtin_prefetch(&graph.targets[graph.offsets[a]]);
-        __builtin_prefetch(&graph.lengths[graph.offsets[a]]);
-        __builtin_prefetch(&normals[3 * a]);
-        __builtin_prefetch(&xyz[3 * a]);
-        __builtin_prefetch(&sn.label[a]);
-        __builtin_prefetch(&in_top[a]);
-        __builtin_prefetch(&radii[a]);
+        prefetch(&graph.targets[graph.offsets[a]]);
+        prefetch(&graph.lengths[graph.offsets[a]]);
+        prefetch(&normals[3 * a]);
+        prefetch(&xyz[3 * a]);
+        prefetch(&sn.label[a]);
+        prefetch(&in_top[a]);
+        prefetch(&radii[a]);
       }
       const std::uint32_t p = pts[i];
       in_top[p] = 1;
