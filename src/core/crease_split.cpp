@@ -12,6 +12,15 @@ namespace pcl_ncut_seg {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
+/// A hint to fetch what \a p points to into the cache (no effect where unsupported).
+inline void prefetch(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 /// The vertices by descending f, ties by ascending index (as extractSupernodes()).
 std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
   std::vector<std::uint32_t> key(f.size());
@@ -86,8 +95,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   auto descending = [&](std::uint32_t a, std::uint32_t b) {
     return f[a] > f[b] || (f[a] == f[b] && a < b);
   };
-  std::vector<char> unsorted(sn.size(), 0); // points gained by a merge-up, sorted when tested
   std::vector<char> in_top(n, 0);
+  static constexpr double kSign[2] = {1.0, -1.0};
+  constexpr std::size_t kAhead = 8;
   // The most concave level cut through s with min_area on each side: (concavity, number of
   // points above it); concavity -1 when s is too small. Reads only s's points and in_top of
   // s's points, so supernodes can be swept in parallel.
@@ -102,6 +112,19 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     if (area < 2.0 * min_area)
       return std::make_pair(best, best_end);
     for (std::size_t i = 0; i < pts.size(); ++i) {
+      // Points in f order are scattered in memory: fetch the data of those a few steps ahead.
+      if (i + 2 * kAhead < pts.size())
+        prefetch(&graph.offsets[pts[i + 2 * kAhead]]);
+      if (i + kAhead < pts.size()) {
+        const std::uint32_t a = pts[i + kAhead];
+        prefetch(&graph.targets[graph.offsets[a]]);
+        prefetch(&graph.lengths[graph.offsets[a]]);
+        prefetch(&normals[3 * a]);
+        prefetch(&xyz[3 * a]);
+        prefetch(&sn.label[a]);
+        prefetch(&in_top[a]);
+        prefetch(&radii[a]);
+      }
       const std::uint32_t p = pts[i];
       in_top[p] = 1;
       top_area += pointArea(p);
@@ -109,14 +132,12 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         const std::uint32_t q = graph.targets[e];
         if (q == p || sn.label[q] != s)
           continue;
+        // sum -= c when q is in the top already, else sum += c, without a branch (the two
+        // are equally likely, and -1 * c is exact).
         const double c = std::max(0.0, -bend(p, q, graph.lengths[e])) / typical;
-        if (in_top[q]) {
-          sum -= c;
-          --count;
-        } else {
-          sum += c;
-          ++count;
-        }
+        const int above = in_top[q];
+        sum += kSign[above] * c;
+        count += 1 - 2 * above;
       }
       if (i + 1 < pts.size() && f[pts[i + 1]] == f[p])
         continue; // not a level cut
@@ -132,26 +153,37 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       in_top[p] = 0;
     return std::make_pair(best, best_end);
   };
-  // First sweep of every supernode in parallel; a supernode that changes is swept again.
+  // Every supernode in the queue is tested in turn. The sweeps of all those in the queue
+  // whose points changed since their last sweep (all at first) are made ahead, in parallel,
+  // biggest first; a sweep depends only on the points of its supernode, and a supernode whose
+  // points change later is swept again, so the result does not depend on the threads.
   std::vector<std::pair<double, std::size_t>> first(sn.size());
-  std::vector<char> fresh(sn.size(), 1);
-  const auto num_supernodes = static_cast<std::ptrdiff_t>(sn.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
-  for (std::ptrdiff_t s = 0; s < num_supernodes; ++s)
-    first[s] = sweep(static_cast<std::uint32_t>(s));
-
+  std::vector<char> fresh(sn.size(), 0); // first[s] is the sweep of s's current points
+  const int threads = usableThreads(params.num_threads);
   std::deque<std::uint32_t> queue;
   for (std::uint32_t s = 0; s < sn.size(); ++s)
     queue.push_back(s);
+  std::vector<std::uint32_t> ahead;
   while (!queue.empty()) {
+    if (!fresh[queue.front()]) {
+      ahead.clear();
+      for (std::uint32_t s : queue)
+        if (!fresh[s]) {
+          fresh[s] = 1; // also keeps s out of ahead twice
+          ahead.push_back(s);
+        }
+      std::stable_sort(ahead.begin(), ahead.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return points[a].size() > points[b].size();
+      });
+      const auto num_ahead = static_cast<std::ptrdiff_t>(ahead.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+      for (std::ptrdiff_t k = 0; k < num_ahead; ++k)
+        first[ahead[k]] = sweep(ahead[k]);
+    }
     const std::uint32_t s = queue.front();
     queue.pop_front();
-    if (unsorted[s]) {
-      std::sort(points[s].begin(), points[s].end(), descending);
-      unsorted[s] = 0;
-    }
     const std::vector<std::uint32_t>& pts = points[s];
-    const auto [best, best_end] = fresh[s] ? first[s] : sweep(s);
+    const auto [best, best_end] = first[s];
     fresh[s] = 0;
     if (best < params.min_concavity)
       continue;
@@ -164,6 +196,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       const std::vector<std::uint32_t>& kids = sn.children[s];
       std::vector<std::uint32_t> stay;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> counts;
+      std::vector<std::size_t> old_size(kids.size());
+      for (std::size_t k = 0; k < kids.size(); ++k)
+        old_size[k] = points[kids[k]].size();
       for (std::uint32_t p : top) {
         counts.clear();
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -190,9 +225,12 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         sn.label[p] = to;
         points[to].push_back(p);
       }
-      for (std::uint32_t t : kids) {
-        unsorted[t] = 1;
-        fresh[t] = 0;
+      // A kid's points and those it gained are each in descending f: merge the two runs.
+      for (std::size_t k = 0; k < kids.size(); ++k) {
+        std::vector<std::uint32_t>& kid = points[kids[k]];
+        std::inplace_merge(kid.begin(), kid.begin() + static_cast<std::ptrdiff_t>(old_size[k]),
+                           kid.end(), descending);
+        fresh[kids[k]] = 0;
       }
       if (stay.size() == top.size())
         continue; // nothing moved: s stays as it is
@@ -206,8 +244,8 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       // The top becomes a supernode that terminates at the bottom's highest point.
       const auto t = static_cast<std::uint32_t>(sn.size());
       ++splits;
-      unsorted.push_back(0);
       fresh.push_back(0);
+      first.emplace_back();
       sn.origin.push_back(sn.origin[s]);
       sn.at_saddle.push_back(sn.at_saddle[s]);
       sn.parent.push_back(s);
