@@ -213,38 +213,48 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
   return normals;
 }
 
+double meanAbsBend(const CsrGraph& graph, const float* xyz, const std::vector<float>& normals,
+                   unsigned num_threads) {
+  const std::size_t n = graph.numVertices();
+  constexpr std::size_t kBlock = 4096;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<double> block_bend(blocks, 0.0);
+  std::vector<std::size_t> block_edges(blocks, 0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(num_threads))
+  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
+    const std::size_t last = std::min(n, (static_cast<std::size_t>(b) + 1) * kBlock);
+    for (std::size_t p = static_cast<std::size_t>(b) * kBlock; p < last; ++p)
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+        if (graph.targets[e] > p) {
+          block_bend[b] += std::abs(edgeBend(xyz, normals, p, graph.targets[e], graph.lengths[e]));
+          ++block_edges[b];
+        }
+  }
+  double total = 0.0;
+  std::size_t edges = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    total += block_bend[b];
+    edges += block_edges[b];
+  }
+  return edges > 0 ? total / static_cast<double>(edges) : 0.0;
+}
+
 Connectivity contactConcavity(const CsrGraph& graph, const float* xyz,
                               const std::vector<float>& normals,
                               const std::vector<std::uint32_t>& label) {
   const std::size_t n = graph.numVertices();
-  // Signed bend of an edge: > 0 where the surface folds outwards (convex), < 0 inwards.
-  auto bend = [&](std::size_t p, std::uint32_t q, float length) {
-    if (!(length > 0.0f))
-      return 0.0;
-    double s = 0.0;
-    for (int d = 0; d < 3; ++d)
-      s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
-    return s / length;
-  };
-  double total = 0.0;
-  std::size_t edges = 0;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<double, std::size_t>> sum;
   for (std::size_t p = 0; p < n; ++p)
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
       const std::uint32_t q = graph.targets[e];
-      if (q <= p)
-        continue;
-      const double b = bend(p, q, graph.lengths[e]);
-      total += std::abs(b);
-      ++edges;
-      if (label[p] == label[q])
+      if (q <= p || label[p] == label[q])
         continue;
       auto& s = sum[{std::min(label[p], label[q]), std::max(label[p], label[q])}];
-      s.first += std::max(0.0, -b);
+      s.first += std::max(0.0, -edgeBend(xyz, normals, p, q, graph.lengths[e]));
       ++s.second;
     }
   Connectivity out;
-  const double typical = edges > 0 ? total / static_cast<double>(edges) : 0.0;
+  const double typical = meanAbsBend(graph, xyz, normals);
   for (const auto& [key, s] : sum)
     out[key] = typical > 0.0 ? s.first / static_cast<double>(s.second) / typical : 0.0;
   return out;

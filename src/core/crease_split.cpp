@@ -1,5 +1,6 @@
 // Splitting supernodes along concave creases (an extension of Sec. 4.3; see crease_split.h).
 #include <pcl_ncut_seg/core/crease_split.h>
+#include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
 #include <pcl_ncut_seg/core/threads.h>
 
@@ -47,44 +48,21 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   if (!(params.min_concavity > 0.0) || n == 0 || sn.size() == 0)
     return sn;
 
-  // Signed bend of an edge (> 0 convex, < 0 concave), as contactConcavity().
   auto bend = [&](std::uint32_t p, std::uint32_t q, float length) {
-    if (!(length > 0.0f))
-      return 0.0;
-    double s = 0.0;
-    for (int d = 0; d < 3; ++d)
-      s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
-    return s / length;
+    return edgeBend(xyz, normals, p, q, length);
   };
   auto pointArea = [&](std::uint32_t p) { return kPi * radii[p] * radii[p]; }; // as Sec. 4.3
-  // Sums over fixed blocks of points, added in block order: the same for any thread count.
-  constexpr std::size_t kBlock = 4096;
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::vector<double> block_bend(blocks, 0.0), block_area(blocks, 0.0);
-  std::vector<std::size_t> block_edges(blocks, 0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
-  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
-    const auto first_point = static_cast<std::uint32_t>(b * kBlock);
-    const auto last_point = static_cast<std::uint32_t>(std::min(n, (b + 1) * kBlock));
-    for (std::uint32_t p = first_point; p < last_point; ++p) {
-      block_area[b] += pointArea(p);
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-        if (graph.targets[e] > p) {
-          block_bend[b] += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
-          ++block_edges[b];
-        }
-    }
-  }
-  double total_bend = 0.0, total_area = 0.0;
-  std::size_t edges = 0;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    total_bend += block_bend[b];
-    total_area += block_area[b];
-    edges += block_edges[b];
-  }
-  if (edges == 0 || !(total_bend > 0.0))
+  const double typical = meanAbsBend(graph, xyz, normals, params.num_threads);
+  if (!(typical > 0.0))
     return sn;
-  const double typical = total_bend / static_cast<double>(edges);
+  // Summed in blocks of 4096 points, as meanAbsBend() sums the bends.
+  double total_area = 0.0;
+  for (std::uint32_t first = 0; first < n; first += 4096) {
+    double block_area = 0.0;
+    for (std::uint32_t p = first; p < std::min<std::size_t>(n, first + 4096u); ++p)
+      block_area += pointArea(p);
+    total_area += block_area;
+  }
   const double min_area = params.area_fraction * total_area;
 
   // Points of each supernode in descending f.

@@ -24,12 +24,33 @@ namespace pcl_ncut_seg {
 std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz,
                                    unsigned num_threads = 0);
 
+/** \brief Signed bend of the kNN edge (p, q) of the given length: (n_p - n_q) . (p - q) /
+ * |p - q|, about the angle between the normals; > 0 where the surface folds outwards
+ * (convex), < 0 where it folds inwards (concave), 0 for an edge of zero length.
+ * \param[in] normals  3 floats per vertex, from orientedNormals() */
+inline double edgeBend(const float* xyz, const std::vector<float>& normals, std::size_t p,
+                       std::size_t q, float length) {
+  if (!(length > 0.0f))
+    return 0.0;
+  double s = 0.0;
+  for (int d = 0; d < 3; ++d)
+    s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
+  return s / length;
+}
+
+/** \brief The model's typical bend, the unit in which concavity is measured so that it does
+ * not depend on the sampling density or the model's size: the mean |edgeBend| over the
+ * graph's undirected edges, 0 without edges. Summed over fixed blocks of vertices, in block
+ * order, so it does not depend on the number of threads. */
+double meanAbsBend(const CsrGraph& graph, const float* xyz, const std::vector<float>& normals,
+                   unsigned num_threads = 0);
+
 /** \brief Per pair of touching supernodes (keyed (min, max), i != j), how concave their
  * contact is: the mean over the kNN edges (p, q) between them of the concave bend
  * max(0, -(n_p - n_q) . (p - q) / |p - q|) (about the angle between the normals where the
  * surface folds inwards, 0 where it folds outwards), divided by the mean bend |(n_p - n_q) .
- * (p - q)| / |p - q| over every edge of the graph, so that it does not depend on the sampling
- * density or the model's size.
+ * (p - q)| / |p - q| over every edge of the graph (meanAbsBend()), so that it does not depend on
+ * the sampling density or the model's size.
  * \param[in] normals  3 floats per vertex, from orientedNormals()
  * \param[in] label    per vertex, its supernode */
 Connectivity contactConcavity(const CsrGraph& graph, const float* xyz,
