@@ -11,10 +11,6 @@
 #include <queue>
 #include <utility>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 namespace pcl_ncut_seg {
 
 std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
@@ -263,21 +259,13 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 
   constexpr float kFar = std::numeric_limits<float>::infinity();
+  std::vector<float> dist(n, kFar);
+  std::vector<std::int32_t> local(n, -1);       // -2: settled; >= 0: index in the band
   using Item = std::pair<float, std::uint32_t>; // (distance, vertex): ties by vertex id
-  // A pair's recut, before it is applied: its band (sorted) and per band point whether it is
-  // on the source (a_seg) side; an empty band when the pair is left as it is.
-  struct Recut {
-    bool computed = false;
-    std::vector<std::uint32_t> band;
-    std::vector<char> source_side;
-  };
-  // Reads segment, seg_area and the frontier only; writes its own scratch (dist, local: all
-  // kFar and -1 again on return) and out.
-  auto recut = [&](std::uint32_t a_seg, std::uint32_t b_seg, std::vector<float>& dist,
-                   std::vector<std::int32_t>& local, Recut& out) {
+  for (const auto& [a_seg, b_seg] : pairs) {
     // The side with less area first: its distance bound also bounds the other side's search.
     if (!(seg_area[a_seg] > 0.0) || !(seg_area[b_seg] > 0.0))
-      return; // no area to bound the band by
+      continue; // no area to bound the band by
     std::uint32_t sides[2] = {a_seg, b_seg};
     if (seg_area[b_seg] < seg_area[a_seg])
       std::swap(sides[0], sides[1]);
@@ -338,7 +326,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
     for (std::uint32_t p : touched)
       dist[p] = kFar;
     if (band.empty())
-      return;
+      continue;
     std::sort(band.begin(), band.end());
     const auto m = static_cast<std::uint32_t>(band.size());
     for (std::uint32_t i = 0; i < m; ++i)
@@ -402,63 +390,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
     std::vector<double>().swap(to_sink);
     for (std::uint32_t p : band)
       local[p] = -1;
-    out.source_side = net.sourceSide(source, sink);
-    out.band = std::move(band);
-  };
-
-  // A recut reads and writes only the points of its two segments (and their areas and
-  // counts), and which of them lie on the frontier: it commutes with the recuts of pairs that
-  // share no segment with it. So while pair i is recut, later pairs that share no segment with
-  // any not yet applied pair before them are recut at the same time, on other threads, and
-  // every recut is applied in the order of the pairs: the same result as one after the other,
-  // whatever the number of threads.
-#ifdef _OPENMP
-  const int workers = std::max(
-      1, std::min(params.num_threads > 0 ? static_cast<int>(params.num_threads)
-                                         : omp_get_max_threads(),
-                  static_cast<int>(pairs.size())));
-#else
-  const int workers = 1;
-#endif
-  std::vector<std::vector<float>> dists(1, std::vector<float>(n, kFar));
-  std::vector<std::vector<std::int32_t>> locals(1, std::vector<std::int32_t>(n, -1));
-  std::vector<Recut> recuts(pairs.size());
-  std::vector<char> busy(num_segments, 0);
-  std::vector<std::size_t> batch;
-  for (std::size_t pair = 0; pair < pairs.size(); ++pair) {
-    const auto [a_seg, b_seg] = pairs[pair];
-    if (!recuts[pair].computed) {
-      batch.assign(1, pair);
-      if (workers > 1) {
-        std::fill(busy.begin(), busy.end(), 0);
-        busy[a_seg] = busy[b_seg] = 1;
-        for (std::size_t j = pair + 1;
-             j < pairs.size() && batch.size() < static_cast<std::size_t>(workers); ++j) {
-          const auto [x, y] = pairs[j];
-          if (!recuts[j].computed && !busy[x] && !busy[y])
-            batch.push_back(j);
-          busy[x] = busy[y] = 1;
-        }
-        while (dists.size() < batch.size()) {
-          dists.emplace_back(n, kFar);
-          locals.emplace_back(n, -1);
-        }
-      }
-      const int tasks = static_cast<int>(batch.size());
-#pragma omp parallel for num_threads(tasks) schedule(static, 1) if (tasks > 1)
-      for (int t = 0; t < tasks; ++t) {
-        const std::size_t j = batch[static_cast<std::size_t>(t)];
-        recut(pairs[j].first, pairs[j].second, dists[static_cast<std::size_t>(t)],
-              locals[static_cast<std::size_t>(t)], recuts[j]);
-        recuts[j].computed = true;
-      }
-    }
-    const std::vector<std::uint32_t> band = std::move(recuts[pair].band);
-    const std::vector<char> source_side = std::move(recuts[pair].source_side);
-    recuts[pair] = Recut{true, {}, {}};
-    if (band.empty())
-      continue;
-    const auto m = static_cast<std::uint32_t>(band.size());
+    const std::vector<char> source_side = net.sourceSide(source, sink);
     std::size_t moved = 0;
     std::int64_t to_a = 0; // points a_seg gains
     std::vector<std::uint32_t> label(m);

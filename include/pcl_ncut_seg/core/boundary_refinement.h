@@ -34,9 +34,6 @@ struct BoundaryParams {
   /// the boundary's length whatever the sampling density) times exp(-crease_weight c), c the
   /// edge's concave bend of edgeCreases(); >= 0 (0: the shortest boundary in the band).
   double crease_weight = 3.0;
-  /// Threads that recut pairs of segments at the same time (pairs that share no segment);
-  /// the result is the same whatever their number. 0: OpenMP's default.
-  unsigned num_threads = 0;
 };
 
 /** \brief Recut the boundary of each pair of touching segments (in order of their ids) with a
@@ -45,8 +42,7 @@ struct BoundaryParams {
  * the part of it outside the band). When a recut cuts a piece off a segment (its points
  * outside the band were connected only through the band), the piece joins the neighbouring
  * segment it shares the most kNN edges with, so that no segment ends with more connected
- * components in the kNN graph than it had. Deterministic: the same result as recutting the
- * pairs one after the other, whatever the number of threads.
+ * components in the kNN graph than it had. Sequential and deterministic.
  * \param[in] radii          r(p) of Sec. 4.3; a point's area is pi r(p)^2, as in f_a
  * \param[in] crease         from edgeCreases(); empty: no crease term
  * \param[in,out] segment    per vertex, its segment in [0, num_segments)
