@@ -415,15 +415,24 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
         segment[band[i]] = label[i];
         changed_points.push_back(band[i]);
       }
-    // The frontier after the recut: only band points and their neighbours can join it.
-    std::size_t kept = 0;
-    for (std::uint32_t p : frontier) {
-      if (onFrontier(p))
-        frontier[kept++] = p;
-      else
-        in_frontier[p] = 0;
+    // The frontier after the recut: only the changed points and their neighbours can leave or
+    // join it (the list keeps its order, then the new ones).
+    bool left = false;
+    for (std::uint32_t p : changed_points)
+      for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
+        if (in_frontier[q] == 1 && !onFrontier(q)) {
+          in_frontier[q] = 0;
+          left = true;
+        }
+      }
+    if (left) {
+      std::size_t kept = 0;
+      for (std::uint32_t p : frontier)
+        if (in_frontier[p])
+          frontier[kept++] = p;
+      frontier.resize(kept);
     }
-    frontier.resize(kept);
     for (std::uint32_t p : changed_points)
       for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
