@@ -53,9 +53,13 @@ namespace {
 /// the maximum preflow, is needed for the cut. Sequential, so the cut is the same whatever the
 /// number of threads. Each undirected edge is two arcs, each the other's reverse.
 struct FlowNetwork {
+  /// An arc with its residual capacity and its reverse (together: one cache line per arc).
+  struct Arc {
+    double cap;
+    std::uint32_t to, rev;
+  };
   std::vector<std::uint32_t> first; ///< size nodes + 1
-  std::vector<std::uint32_t> to, rev;
-  std::vector<double> cap; ///< residual capacity
+  std::vector<Arc> arc;
 
   std::uint32_t nodes() const { return static_cast<std::uint32_t>(first.size() - 1); }
 
@@ -75,8 +79,8 @@ struct FlowNetwork {
       for (std::size_t i = 0; i < bfs.size(); ++i) {
         const std::uint32_t u = bfs[i];
         for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
-          const std::uint32_t w = to[a];
-          if (w != s && height[w] == n && cap[rev[a]] > 0.0) {
+          const std::uint32_t w = arc[a].to;
+          if (w != s && height[w] == n && arc[arc[a].rev].cap > 0.0) {
             height[w] = height[u] + 1;
             bfs.push_back(w);
           }
@@ -92,13 +96,13 @@ struct FlowNetwork {
     };
     globalRelabel();
     for (std::uint32_t a = first[s]; a < first[s + 1]; ++a) {
-      const double c = cap[a];
+      const double c = arc[a].cap;
       if (!(c > 0.0))
         continue;
-      cap[a] = 0.0;
-      cap[rev[a]] += c;
-      excess[to[a]] += c;
-      activate(to[a]);
+      arc[a].cap = 0.0;
+      arc[arc[a].rev].cap += c;
+      excess[arc[a].to] += c;
+      activate(arc[a].to);
     }
     std::size_t relabels = 0;
     while (head < queue.size()) {
@@ -108,8 +112,8 @@ struct FlowNetwork {
         if (cur[u] == first[u + 1]) {
           std::uint32_t h = n;
           for (std::uint32_t a = first[u]; a < first[u + 1]; ++a)
-            if (cap[a] > 0.0)
-              h = std::min(h, height[to[a]] + 1);
+            if (arc[a].cap > 0.0)
+              h = std::min(h, height[arc[a].to] + 1);
           height[u] = std::min(h, n);
           cur[u] = first[u];
           if (++relabels >= n / 4 + 1) {
@@ -122,15 +126,15 @@ struct FlowNetwork {
           }
           continue;
         }
-        const std::uint32_t a = cur[u], v = to[a];
-        if (cap[a] > 0.0 && height[u] == height[v] + 1) {
-          const double d = std::min(excess[u], cap[a]);
-          cap[a] -= d;
-          cap[rev[a]] += d;
+        const std::uint32_t a = cur[u], v = arc[a].to;
+        if (arc[a].cap > 0.0 && height[u] == height[v] + 1) {
+          const double d = std::min(excess[u], arc[a].cap);
+          arc[a].cap -= d;
+          arc[arc[a].rev].cap += d;
           excess[u] -= d;
           excess[v] += d;
           activate(v);
-          if (!(cap[a] > 0.0))
+          if (!(arc[a].cap > 0.0))
             ++cur[u];
         } else {
           ++cur[u];
@@ -144,8 +148,8 @@ struct FlowNetwork {
     for (std::size_t i = 0; i < bfs.size(); ++i) {
       const std::uint32_t u = bfs[i];
       for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
-        const std::uint32_t w = to[a];
-        if (source[w] && cap[rev[a]] > 0.0) {
+        const std::uint32_t w = arc[a].to;
+        if (source[w] && arc[arc[a].rev].cap > 0.0) {
           source[w] = 0;
           bfs.push_back(w);
         }
@@ -361,18 +365,12 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
     for (std::uint32_t v = 0; v < m + 2; ++v)
       net.first[v + 1] += net.first[v];
     const std::uint32_t arcs = net.first[m + 2];
-    net.to.resize(arcs);
-    net.rev.resize(arcs);
-    net.cap.resize(arcs);
+    net.arc.resize(arcs);
     std::vector<std::uint32_t> fill(net.first.begin(), net.first.end() - 1);
     auto addPair = [&](std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
       const std::uint32_t a = fill[u]++, b = fill[v]++;
-      net.to[a] = v;
-      net.to[b] = u;
-      net.rev[a] = b;
-      net.rev[b] = a;
-      net.cap[a] = cap_uv;
-      net.cap[b] = cap_vu;
+      net.arc[a] = {cap_uv, v, b};
+      net.arc[b] = {cap_vu, u, a};
     };
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = band[i];
@@ -415,15 +413,24 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
         segment[band[i]] = label[i];
         changed_points.push_back(band[i]);
       }
-    // The frontier after the recut: only band points and their neighbours can join it.
-    std::size_t kept = 0;
-    for (std::uint32_t p : frontier) {
-      if (onFrontier(p))
-        frontier[kept++] = p;
-      else
-        in_frontier[p] = 0;
+    // The frontier after the recut: only the changed points and their neighbours can leave or
+    // join it (the list keeps its order, then the new ones).
+    bool left = false;
+    for (std::uint32_t p : changed_points)
+      for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
+        if (in_frontier[q] == 1 && !onFrontier(q)) {
+          in_frontier[q] = 0;
+          left = true;
+        }
+      }
+    if (left) {
+      std::size_t kept = 0;
+      for (std::uint32_t p : frontier)
+        if (in_frontier[p])
+          frontier[kept++] = p;
+      frontier.resize(kept);
     }
-    frontier.resize(kept);
     for (std::uint32_t p : changed_points)
       for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
