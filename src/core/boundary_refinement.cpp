@@ -1,6 +1,8 @@
 // Point-level boundary refinement after the hierarchy (an extension of Sec. 5.2; Katz and Tal
 // 2003's fuzzy cuts over the kNN graph).
 #include <pcl_ncut_seg/core/boundary_refinement.h>
+#include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <array>
@@ -14,33 +16,20 @@
 namespace pcl_ncut_seg {
 
 std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
-                                      const std::vector<float>& normals) {
+                                      const std::vector<float>& normals, unsigned num_threads) {
   const std::size_t n = graph.numVertices();
   std::vector<std::uint8_t> crease(graph.numDirectedEdges(), 0);
-  // Signed bend of an edge, as in contactConcavity(): > 0 where the surface folds outwards.
-  auto bend = [&](std::size_t p, std::uint32_t q, float length) {
-    if (!(length > 0.0f))
-      return 0.0;
-    double s = 0.0;
-    for (int d = 0; d < 3; ++d)
-      s += (normals[3 * p + d] - normals[3 * q + d]) * (xyz[3 * p + d] - xyz[3 * q + d]);
-    return s / length;
-  };
-  double total = 0.0;
-  std::size_t edges = 0;
-  for (std::size_t p = 0; p < n; ++p)
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-      if (graph.targets[e] > p) {
-        total += std::abs(bend(p, graph.targets[e], graph.lengths[e]));
-        ++edges;
-      }
-  const double typical = edges > 0 ? total / static_cast<double>(edges) : 0.0;
+  const double typical = meanAbsBend(graph, xyz, normals, num_threads);
   if (!(typical > 0.0))
     return crease;
-  // The bend is symmetric in p and q: both directions get the same value.
-  for (std::size_t p = 0; p < n; ++p)
+  // Each edge on its own: the same for any thread count.
+#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
+  for (std::ptrdiff_t p = 0; p < static_cast<std::ptrdiff_t>(n); ++p)
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const double c = std::max(0.0, -bend(p, graph.targets[e], graph.lengths[e])) / typical;
+      const double c =
+          std::max(0.0, -edgeBend(xyz, normals, static_cast<std::size_t>(p), graph.targets[e],
+                                  graph.lengths[e])) /
+          typical;
       crease[e] = static_cast<std::uint8_t>(std::min(255.0, std::round(16.0 * c)));
     }
   return crease;

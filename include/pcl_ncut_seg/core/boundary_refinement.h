@@ -17,12 +17,13 @@ namespace pcl_ncut_seg {
 
 /** \brief Per directed edge of the graph (the same positions as graph.targets), how concave
  * the surface is across it: the concave bend max(0, -(n_p - n_q) . (p - q) / |p - q|) (as in
- * contactConcavity()) divided by the mean |bend| over every edge, stored as round(16 c)
+ * contactConcavity()) divided by meanAbsBend(), stored as round(16 c)
  * clamped to 255 (one byte per edge, kept from the expensive stage).
- * \param[in] xyz      3 floats per vertex
- * \param[in] normals  3 floats per vertex, from orientedNormals() */
+ * \param[in] xyz          3 floats per vertex
+ * \param[in] normals      3 floats per vertex, from orientedNormals()
+ * \param[in] num_threads  0 = all cores; the result does not depend on it */
 std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
-                                      const std::vector<float>& normals);
+                                      const std::vector<float>& normals, unsigned num_threads = 0);
 
 /** \brief Parameters of the boundary refinement. */
 struct BoundaryParams {

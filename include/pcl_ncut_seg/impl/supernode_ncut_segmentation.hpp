@@ -627,7 +627,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
         analysis_->concavity = pcl_ncut_seg::contactConcavity(
             analysis_->graph, xyz.data(), normals, analysis_->supernodes.label);
       if (refine_boundaries)
-        analysis_->crease = pcl_ncut_seg::edgeCreases(analysis_->graph, xyz.data(), normals);
+        analysis_->crease =
+            pcl_ncut_seg::edgeCreases(analysis_->graph, xyz.data(), normals, num_threads_);
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - concavity_start)
               .count();
