@@ -16,10 +16,12 @@
 namespace pcl_ncut_seg {
 
 std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
-                                      const std::vector<float>& normals, unsigned num_threads) {
+                                      const std::vector<float>& normals, unsigned num_threads,
+                                      double typical_bend) {
   const std::size_t n = graph.numVertices();
   std::vector<std::uint8_t> crease(graph.numDirectedEdges(), 0);
-  const double typical = meanAbsBend(graph, xyz, normals, num_threads);
+  const double typical =
+      typical_bend > 0.0 ? typical_bend : meanAbsBend(graph, xyz, normals, num_threads);
   if (!(typical > 0.0))
     return crease;
   // Each edge on its own: the same for any thread count.

@@ -241,7 +241,7 @@ double meanAbsBend(const CsrGraph& graph, const float* xyz, const std::vector<fl
 
 Connectivity contactConcavity(const CsrGraph& graph, const float* xyz,
                               const std::vector<float>& normals,
-                              const std::vector<std::uint32_t>& label) {
+                              const std::vector<std::uint32_t>& label, double typical_bend) {
   const std::size_t n = graph.numVertices();
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::pair<double, std::size_t>> sum;
   for (std::size_t p = 0; p < n; ++p)
@@ -254,7 +254,7 @@ Connectivity contactConcavity(const CsrGraph& graph, const float* xyz,
       ++s.second;
     }
   Connectivity out;
-  const double typical = meanAbsBend(graph, xyz, normals);
+  const double typical = typical_bend > 0.0 ? typical_bend : meanAbsBend(graph, xyz, normals);
   for (const auto& [key, s] : sum)
     out[key] = typical > 0.0 ? s.first / static_cast<double>(s.second) / typical : 0.0;
   return out;

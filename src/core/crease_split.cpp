@@ -52,7 +52,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     return edgeBend(xyz, normals, p, q, length);
   };
   auto pointArea = [&](std::uint32_t p) { return kPi * radii[p] * radii[p]; }; // as Sec. 4.3
-  const double typical = meanAbsBend(graph, xyz, normals, params.num_threads);
+  const double typical = params.typical_bend > 0.0
+                             ? params.typical_bend
+                             : meanAbsBend(graph, xyz, normals, params.num_threads);
   if (!(typical > 0.0))
     return sn;
   // Summed in blocks of 4096 points, as meanAbsBend() sums the bends.

@@ -21,9 +21,11 @@ namespace pcl_ncut_seg {
  * clamped to 255 (one byte per edge, kept from the expensive stage).
  * \param[in] xyz          3 floats per vertex
  * \param[in] normals      3 floats per vertex, from orientedNormals()
- * \param[in] num_threads  0 = all cores; the result does not depend on it */
+ * \param[in] num_threads  0 = all cores; the result does not depend on it
+ * \param[in] typical_bend meanAbsBend(), when the caller has it already; 0: computed here */
 std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
-                                      const std::vector<float>& normals, unsigned num_threads = 0);
+                                      const std::vector<float>& normals, unsigned num_threads = 0,
+                                      double typical_bend = 0.0);
 
 /** \brief Parameters of the boundary refinement. */
 struct BoundaryParams {

@@ -51,10 +51,11 @@ double meanAbsBend(const CsrGraph& graph, const float* xyz, const std::vector<fl
  * surface folds inwards, 0 where it folds outwards), divided by the mean bend |(n_p - n_q) .
  * (p - q)| / |p - q| over every edge of the graph (meanAbsBend()), so that it does not depend on
  * the sampling density or the model's size.
- * \param[in] normals  3 floats per vertex, from orientedNormals()
- * \param[in] label    per vertex, its supernode */
+ * \param[in] normals       3 floats per vertex, from orientedNormals()
+ * \param[in] label         per vertex, its supernode
+ * \param[in] typical_bend  meanAbsBend(), when the caller has it already; 0: computed here */
 Connectivity contactConcavity(const CsrGraph& graph, const float* xyz,
                               const std::vector<float>& normals,
-                              const std::vector<std::uint32_t>& label);
+                              const std::vector<std::uint32_t>& label, double typical_bend = 0.0);
 
 } // namespace pcl_ncut_seg

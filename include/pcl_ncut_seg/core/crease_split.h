@@ -25,6 +25,8 @@ struct CreaseSplitParams {
   /// Threads for the first sweep of every supernode (0 = all cores); the result does not
   /// depend on it.
   unsigned num_threads = 0;
+  /// meanAbsBend() of the graph, when the caller has it already; 0: computed here.
+  double typical_bend = 0.0;
 };
 
 /** \brief Split refined supernodes along concave creases.

@@ -598,12 +598,15 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
         pcl_ncut_seg::analyze(std::move(graph), params, times_));
     std::vector<float> normals;
+    double typical_bend = 0.0; // meanAbsBend(), computed once for the three users below
     if (crease_split_ > 0.0) {
       // Split supernodes along concave creases (core/crease_split.h): refinement time.
       const auto crease_start = std::chrono::steady_clock::now();
       pcl_ncut_seg::Analysis& a = *analysis_;
       normals = pcl_ncut_seg::orientedNormals(a.graph, xyz.data(), num_threads_);
+      typical_bend = pcl_ncut_seg::meanAbsBend(a.graph, xyz.data(), normals, num_threads_);
       pcl_ncut_seg::CreaseSplitParams crease;
+      crease.typical_bend = typical_bend;
       crease.min_concavity = crease_split_;
       crease.area_fraction = area_fraction_;
       crease.num_threads = num_threads_;
@@ -621,14 +624,18 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     if (similarity_.concavity_weight > 0.0 || refine_boundaries) {
       // Measured between the supernodes, like eq. (8): its time counts as refinement time.
       const auto concavity_start = std::chrono::steady_clock::now();
-      if (normals.empty())
+      if (normals.empty()) {
         normals = pcl_ncut_seg::orientedNormals(analysis_->graph, xyz.data(), num_threads_);
+        typical_bend =
+            pcl_ncut_seg::meanAbsBend(analysis_->graph, xyz.data(), normals, num_threads_);
+      }
       if (similarity_.concavity_weight > 0.0)
-        analysis_->concavity = pcl_ncut_seg::contactConcavity(
-            analysis_->graph, xyz.data(), normals, analysis_->supernodes.label);
+        analysis_->concavity =
+            pcl_ncut_seg::contactConcavity(analysis_->graph, xyz.data(), normals,
+                                           analysis_->supernodes.label, typical_bend);
       if (refine_boundaries)
-        analysis_->crease =
-            pcl_ncut_seg::edgeCreases(analysis_->graph, xyz.data(), normals, num_threads_);
+        analysis_->crease = pcl_ncut_seg::edgeCreases(analysis_->graph, xyz.data(), normals,
+                                                      num_threads_, typical_bend);
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - concavity_start)
               .count();
