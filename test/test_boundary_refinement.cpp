@@ -95,6 +95,19 @@ componentsPerSegment(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg,
   return out;
 }
 
+/// Edge creases of gridStrip(w, h) with a crease (c = 10) across the strip between columns
+/// `column` and column + 1, and none elsewhere.
+std::vector<std::uint8_t> creaseAcross(const CsrGraph& graph, int w, int column) {
+  std::vector<std::uint8_t> crease(graph.numDirectedEdges(), 0);
+  for (std::uint32_t p = 0; p < graph.numVertices(); ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const int x = static_cast<int>(p) % w, xq = static_cast<int>(graph.targets[e]) % w;
+      if (std::min(x, xq) == column && std::max(x, xq) == column + 1)
+        crease[e] = 160; // round(16 c)
+    }
+  return crease;
+}
+
 } // namespace
 
 // On a strip whose two segments meet at x = 19.5, a crease across it at x = 14.5 (the
@@ -102,13 +115,7 @@ componentsPerSegment(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg,
 TEST(BoundaryRefinement, GridBoundaryMovesToTheCrease) {
   const int w = 40, h = 8;
   const CsrGraph graph = gridStrip(w, h);
-  std::vector<std::uint8_t> crease(graph.numDirectedEdges(), 0);
-  for (int p = 0; p < w * h; ++p)
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const int x = p % w, xq = static_cast<int>(graph.targets[e]) % w;
-      if (std::min(x, xq) == 14 && std::max(x, xq) == 15)
-        crease[e] = 160; // c = 10
-    }
+  const std::vector<std::uint8_t> crease = creaseAcross(graph, w, 14); // c = 10
   const std::vector<float> radii(w * h, 0.5f);
   std::vector<std::uint32_t> label(w * h);
   for (int p = 0; p < w * h; ++p)
@@ -127,13 +134,7 @@ TEST(BoundaryRefinement, GridBoundaryMovesToTheCrease) {
 TEST(BoundaryRefinement, GridBandBoundsTheMove) {
   const int w = 40, h = 8;
   const CsrGraph graph = gridStrip(w, h);
-  std::vector<std::uint8_t> crease(graph.numDirectedEdges(), 0);
-  for (int p = 0; p < w * h; ++p)
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const int x = p % w, xq = static_cast<int>(graph.targets[e]) % w;
-      if (std::min(x, xq) == 9 && std::max(x, xq) == 10)
-        crease[e] = 160; // 10 columns from the boundary
-    }
+  const std::vector<std::uint8_t> crease = creaseAcross(graph, w, 9); // 10 columns away
   const std::vector<float> radii(w * h, 0.5f);
   std::vector<std::uint32_t> label(w * h);
   for (int p = 0; p < w * h; ++p)

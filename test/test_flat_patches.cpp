@@ -67,6 +67,16 @@ TriangleMesh openCup() {
   return mesh;
 }
 
+/// n points sampled on the mesh, as a PCL cloud.
+pcl::PointCloud<pcl::PointXYZ>::Ptr sampledCloud(const TriangleMesh& mesh, std::size_t n,
+                                                 std::uint64_t seed) {
+  const std::vector<float> xyz = sampleSurface(mesh, n, seed);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  for (std::size_t i = 0; i < xyz.size(); i += 3)
+    cloud->push_back(pcl::PointXYZ(xyz[i], xyz[i + 1], xyz[i + 2]));
+  return cloud;
+}
+
 } // namespace
 
 TEST(FlatPatches, Eq9LeavesOutTheWidthRatioBetweenFlatSupernodes) {
@@ -125,10 +135,7 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
   // segments remain where a person sees one or two.)
   const TriangleMesh cup = openCup();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const std::vector<float> xyz = sampleSurface(cup, 6000, seed);
-    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-    for (std::size_t i = 0; i < xyz.size(); i += 3)
-      cloud->push_back(pcl::PointXYZ(xyz[i], xyz[i + 1], xyz[i + 2]));
+    const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = sampledCloud(cup, 6000, seed);
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
     seg.setNeckExponent(0.0); // the largest-gap rule, which keeps every nearly free cut
@@ -159,10 +166,7 @@ TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
   // short: the two rules keep about as many (4 / 9 / 9 and 4 / 9 / 10), printed only.
   const TriangleMesh cup = openCup();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-    const std::vector<float> xyz = sampleSurface(cup, 6000, seed);
-    pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-    for (std::size_t i = 0; i < xyz.size(); i += 3)
-      cloud->push_back(pcl::PointXYZ(xyz[i], xyz[i + 1], xyz[i + 2]));
+    const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = sampledCloud(cup, 6000, seed);
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
     std::vector<pcl::PointIndices> segments;

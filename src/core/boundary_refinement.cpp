@@ -24,14 +24,13 @@ std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
       typical_bend > 0.0 ? typical_bend : meanAbsBend(graph, xyz, normals, num_threads);
   if (!(typical > 0.0))
     return crease;
-  // Each edge on its own: the same for any thread count.
+    // Each edge on its own: the same for any thread count.
 #pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
   for (std::ptrdiff_t p = 0; p < static_cast<std::ptrdiff_t>(n); ++p)
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const double c =
-          std::max(0.0, -edgeBend(xyz, normals, static_cast<std::size_t>(p), graph.targets[e],
-                                  graph.lengths[e])) /
-          typical;
+      const double c = std::max(0.0, -edgeBend(xyz, normals, static_cast<std::size_t>(p),
+                                               graph.targets[e], graph.lengths[e])) /
+                       typical;
       crease[e] = static_cast<std::uint8_t>(std::min(255.0, std::round(16.0 * c)));
     }
   return crease;

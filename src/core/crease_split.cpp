@@ -1,6 +1,7 @@
 // Splitting supernodes along concave creases (an extension of Sec. 4.3; see crease_split.h).
-#include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/crease_split.h>
+#include <pcl_ncut_seg/core/prefetch.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
 #include <pcl_ncut_seg/core/threads.h>
 
@@ -12,15 +13,6 @@
 namespace pcl_ncut_seg {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-/// A hint to fetch what \a p points to into the cache (no effect where unsupported).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 
 /// The vertices by descending f, ties by ascending index (as extractSupernodes()).
 std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {

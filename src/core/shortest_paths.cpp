@@ -1,4 +1,5 @@
 // Sec. 4.1's geodesic distances: Dial's bucket queue and a cache-friendly vertex order.
+#include <pcl_ncut_seg/core/prefetch.h>
 #include <pcl_ncut_seg/core/shortest_paths.h>
 
 #include <algorithm>
@@ -8,15 +9,6 @@ namespace pcl_ncut_seg {
 namespace {
 constexpr std::uint32_t kNotQueued = std::numeric_limits<std::uint32_t>::max();
 constexpr float kInf = std::numeric_limits<float>::infinity();
-
-/// Ask for the cache line at p ahead of its use (a hint: it never faults, even past an array).
-inline void prefetch(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
 
 /// Dial's bucket circle for a graph: bucket width about twice the mean edge, and a power-of-two
 /// number of buckets that covers the longest edge (pending entries lie within longest / width
