@@ -167,29 +167,18 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       // highest f first; a point none of whose processed neighbours is in them stays below.
       const std::vector<std::uint32_t>& kids = sn.children[s];
       std::vector<std::uint32_t> stay;
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> counts;
+      LabelVote vote;
       std::vector<std::size_t> old_size(kids.size());
       for (std::size_t k = 0; k < kids.size(); ++k)
         old_size[k] = points[kids[k]].size();
       for (std::uint32_t p : top) {
-        counts.clear();
+        vote.clear();
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
           const std::uint32_t t = sn.label[graph.targets[e]];
-          if (std::find(kids.begin(), kids.end(), t) == kids.end())
-            continue;
-          auto it = std::find_if(counts.begin(), counts.end(),
-                                 [t](const auto& c) { return c.first == t; });
-          if (it == counts.end())
-            counts.emplace_back(t, 1);
-          else
-            ++it->second;
+          if (std::find(kids.begin(), kids.end(), t) != kids.end())
+            vote.add(t);
         }
-        std::uint32_t to = kNone, most = 0;
-        for (const auto& c : counts)
-          if (c.second > most || (c.second == most && c.first < to)) {
-            to = c.first;
-            most = c.second;
-          }
+        const std::uint32_t to = vote.winner();
         if (to == kNone) {
           stay.push_back(p);
           continue;

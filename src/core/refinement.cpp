@@ -111,26 +111,12 @@ struct Work {
   /// The other supernode that shares most kNN edges with these points (ties: smaller id).
   std::uint32_t bestNeighbour(const CsrGraph& g, const std::vector<std::uint32_t>& pts,
                               std::uint32_t self) const {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> count;
+    LabelVote vote;
     for (std::uint32_t p : pts)
-      for (std::uint32_t e = g.offsets[p]; e < g.offsets[p + 1]; ++e) {
-        const std::uint32_t t = label[g.targets[e]];
-        if (t == self)
-          continue;
-        auto it =
-            std::find_if(count.begin(), count.end(), [t](const auto& c) { return c.first == t; });
-        if (it == count.end())
-          count.emplace_back(t, 1);
-        else
-          ++it->second;
-      }
-    std::uint32_t best = kNone, best_count = 0;
-    for (const auto& c : count)
-      if (c.second > best_count || (c.second == best_count && c.first < best)) {
-        best = c.first;
-        best_count = c.second;
-      }
-    return best;
+      for (std::uint32_t e = g.offsets[p]; e < g.offsets[p + 1]; ++e)
+        if (label[g.targets[e]] != self)
+          vote.add(label[g.targets[e]]);
+    return vote.winner();
   }
 };
 } // namespace

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -47,5 +48,34 @@ struct Supernodes {
  */
 Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
                              float crossing_fraction);
+
+/** \brief A vote among supernode labels, e.g. those of a point's neighbours, for where the
+ * point should go: the label cast most often wins, ties go to the smaller label. Few distinct
+ * labels are expected, so they are kept in a short list. */
+class LabelVote {
+public:
+  void clear() { counts_.clear(); }
+  void add(std::uint32_t label) {
+    for (auto& c : counts_)
+      if (c.first == label) {
+        ++c.second;
+        return;
+      }
+    counts_.emplace_back(label, 1);
+  }
+  /// The winning label; kNone when no vote was cast.
+  std::uint32_t winner() const {
+    std::uint32_t best = kNone, best_count = 0;
+    for (const auto& c : counts_)
+      if (c.second > best_count || (c.second == best_count && c.first < best)) {
+        best = c.first;
+        best_count = c.second;
+      }
+    return best;
+  }
+
+private:
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> counts_;
+};
 
 } // namespace pcl_ncut_seg
