@@ -131,20 +131,12 @@ struct FlowNetwork {
         }
       }
     }
-    // The sink side: nodes that reach t through residual arcs.
-    std::vector<char> source(n, 1);
-    std::vector<std::uint32_t> bfs{t};
-    source[t] = 0;
-    for (std::size_t i = 0; i < bfs.size(); ++i) {
-      const std::uint32_t u = bfs[i];
-      for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
-        const std::uint32_t w = arc[a].to;
-        if (source[w] && arc[arc[a].rev].cap > 0.0) {
-          source[w] = 0;
-          bfs.push_back(w);
-        }
-      }
-    }
+    // The sink side: nodes that reach t through residual arcs, i.e. those an exact relabelling
+    // leaves below n (s cannot reach t once the preflow is maximum).
+    globalRelabel();
+    std::vector<char> source(n);
+    for (std::uint32_t v = 0; v < n; ++v)
+      source[v] = height[v] == n;
     return source;
   }
 };
