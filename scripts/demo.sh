@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # From a fresh Debian 12 machine to a demo result: installs the dependencies (as root or with
-# sudo), builds the pcl_ncut_seg tool in Release, and segments the bundled hand model into
-# build/hand_segments.pcd (view it with: pcl_viewer build/hand_segments.pcd).
+# sudo), builds the pcl_ncut_seg tool in Release, and segments the bundled armadillo model
+# into build/armadillo_segments.pcd (view it with: pcl_viewer build/armadillo_segments.pcd).
 #
 #   bash scripts/demo.sh
 #
@@ -21,5 +21,5 @@ cmake --build "$BUILD_DIR" -j "$JOBS" --target pcl_ncut_seg_tool
 cd "$BUILD_DIR"
 ./tools/pcl_ncut_seg
 echo
-echo "Segments written to $BUILD_DIR/hand_segments.pcd; view them with:"
-echo "  pcl_viewer $BUILD_DIR/hand_segments.pcd"
+echo "Segments written to $BUILD_DIR/armadillo_segments.pcd; view them with:"
+echo "  pcl_viewer $BUILD_DIR/armadillo_segments.pcd"

@@ -29,6 +29,6 @@ cmake -S test/consumer -B "$WORK/consumer" -DCMAKE_BUILD_TYPE=Release \
 cmake --build "$WORK/consumer" -j "$JOBS"
 "$WORK/consumer/pcl_ncut_seg_consumer"
 # The installed tool finds the installed model.
-(cd "$WORK" && "$WORK/prefix/bin/pcl_ncut_seg" -quiet -segments 2 && test -s hand_segments.pcd)
+(cd "$WORK" && "$WORK/prefix/bin/pcl_ncut_seg" -quiet -segments 2 && test -s armadillo_segments.pcd)
 
 echo "scripts/test.sh: all tests passed"

@@ -168,22 +168,27 @@ TEST(ReadSeg, ReadsOneLabelPerLine) {
   EXPECT_FALSE(pcl_ncut_seg::readSeg("/nonexistent/a.seg", labels));
 }
 
-TEST(BundledData, HandIsReproducedByItsDocumentedCommand) {
-  // data/README.md says data/hand.pcd is 8000 samples of cgal-hand.off with seed 1.
-  const fs::path source = fs::path(PCL_NCUT_SEG_SHARED_DATA) / "models" / "cgal-hand.off";
-  if (!fs::exists(source))
-    GTEST_SKIP() << "shared data not found at " << source;
-  pcl_ncut_seg::TriangleMesh mesh;
-  ASSERT_TRUE(pcl_ncut_seg::readOff(source.string(), mesh));
-  const std::vector<float> xyz = pcl_ncut_seg::sampleSurface(mesh, 8000, 1);
-  pcl::PointCloud<pcl::PointXYZ> bundled;
-  ASSERT_EQ(pcl::io::loadPCDFile(std::string(PCL_NCUT_SEG_DATA_DIR) + "/hand.pcd", bundled), 0);
-  ASSERT_EQ(bundled.size() * 3, xyz.size());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < bundled.size(); ++i)
-    differ += bundled[i].x != xyz[3 * i] || bundled[i].y != xyz[3 * i + 1] ||
-              bundled[i].z != xyz[3 * i + 2];
-  EXPECT_EQ(differ, 0u);
+TEST(BundledData, ModelsAreReproducedByTheirDocumentedCommands) {
+  // data/README.md says data/<name>.pcd is 8000 samples of cgal-<name>.off with seed 1.
+  for (const std::string name : {"armadillo", "hand"}) {
+    SCOPED_TRACE(name);
+    const fs::path source =
+        fs::path(PCL_NCUT_SEG_SHARED_DATA) / "models" / ("cgal-" + name + ".off");
+    if (!fs::exists(source))
+      GTEST_SKIP() << "shared data not found at " << source;
+    pcl_ncut_seg::TriangleMesh mesh;
+    ASSERT_TRUE(pcl_ncut_seg::readOff(source.string(), mesh));
+    const std::vector<float> xyz = pcl_ncut_seg::sampleSurface(mesh, 8000, 1);
+    pcl::PointCloud<pcl::PointXYZ> bundled;
+    ASSERT_EQ(
+        pcl::io::loadPCDFile(std::string(PCL_NCUT_SEG_DATA_DIR) + "/" + name + ".pcd", bundled), 0);
+    ASSERT_EQ(bundled.size() * 3, xyz.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < bundled.size(); ++i)
+      differ += bundled[i].x != xyz[3 * i] || bundled[i].y != xyz[3 * i + 1] ||
+                bundled[i].z != xyz[3 * i + 2];
+    EXPECT_EQ(differ, 0u);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -5,7 +5,7 @@
  *
  *   pcl_ncut_seg [input.pcd|.ply|.off|.obj] [output.pcd] [options]
  *
- * With no input, segments the bundled model hand.pcd and writes hand_segments.pcd.
+ * With no input, segments the bundled model armadillo.pcd and writes armadillo_segments.pcd.
  */
 #include "tool_common.h"
 
@@ -48,7 +48,8 @@ void printHelp(const char* name) {
   print_info("The input is a point cloud (.pcd, .ply) or a mesh (.off, .obj, .ply with faces); a "
              "mesh becomes one point\nper face centroid, or -samples N points sampled uniformly "
              "by area.\n");
-  print_info("With no input, segments the bundled model hand.pcd and writes hand_segments.pcd in "
+  print_info("With no input, segments the bundled model armadillo.pcd and writes "
+             "armadillo_segments.pcd in "
              "the current directory.\nWith an input and no output, writes <input "
              "name>_segments.pcd in the current directory.\n");
   print_info("  where options are:\n");

@@ -90,7 +90,7 @@ void printHelp(const char* name) {
   print_info("Shows the segmentation of a point-sampled surface (Yamazaki et al., \"Segmenting "
              "Point-sampled Surfaces\")\nand its stages. The input is a point cloud (.pcd, "
              ".ply) or a mesh (.off, .obj, .ply with faces);\nwith no input, the bundled model "
-             "hand.pcd. Press h in the window for the keys.\n");
+             "armadillo.pcd. Press h in the window for the keys.\n");
   print_info("  where options are:\n");
   printFlags(viewerFlags());
 }

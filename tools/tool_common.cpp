@@ -408,7 +408,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
 }
 
 std::string findBundledModel() {
-  const char* kModel = "hand.pcd";
+  const char* kModel = "armadillo.pcd";
   // The source tree, the configured install directory, and <prefix>/share/pcl_ncut_seg beside
   // this executable's bin/ (for an install to another prefix).
   std::vector<std::string> dirs = {PCL_NCUT_SEG_SOURCE_DATA_DIR, PCL_NCUT_SEG_INSTALL_DATA_DIR};

@@ -86,7 +86,7 @@ std::vector<Flag> commonFlags();
 bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg);
 /// \}
 
-/** \brief Where the bundled model hand.pcd is, or "" with one error line. */
+/** \brief Where the bundled model armadillo.pcd is, or "" with one error line. */
 std::string findBundledModel();
 
 /// \name Input
