@@ -6,6 +6,8 @@
 #include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "support/shapes.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -138,6 +140,30 @@ TEST(CreaseCut, FollowsACreaseThatSlantsAcrossTheLevelSets) {
   params.cut_concavity = 1e6;
   EXPECT_EQ(splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params).size(),
             1u);
+}
+
+TEST(CreaseCut, SameSupernodesForAnyThreadCount) {
+  // The cuts of the first test of each supernode run on several threads; the result must not
+  // depend on how many. A low setting, so that the generated shapes get crease cuts.
+  for (const auto& shape : {test::makeQuadruped(4000, 1), test::makeHand(4000, 2)}) {
+    std::vector<int> labels[3];
+    for (unsigned threads : {1u, 2u, 4u}) {
+      Segmenter seg;
+      seg.setInputCloud(shape.cloud);
+      seg.setCreaseCut(0.3);
+      seg.setNumberOfThreads(threads);
+      std::vector<pcl::PointIndices> segments;
+      seg.extract(segments);
+      labels[threads == 1 ? 0 : threads / 2] = seg.getSupernodeLabels(true);
+    }
+    Segmenter off;
+    off.setInputCloud(shape.cloud);
+    std::vector<pcl::PointIndices> segments;
+    off.extract(segments);
+    EXPECT_NE(labels[0], off.getSupernodeLabels(true)) << "crease cuts changed nothing";
+    EXPECT_EQ(labels[0], labels[1]);
+    EXPECT_EQ(labels[0], labels[2]);
+  }
 }
 
 TEST(CreaseCut, SetterChecksItsValueAndZeroIsOff) {
