@@ -104,7 +104,7 @@ void printHelp() {
          "  -band F           setBoundaryBand (default: the library's default)\n"
          "  -bandcrease W     setBoundaryCreaseWeight (default: the library's default)\n"
          "  -crease C         setCreaseSplit (default: the library's default)\n"
-         "  -creasecut C      setCreaseCut (default: the library's default)\n"
+         "  -creasecut S      setCreaseCut (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -309,6 +309,8 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setCreaseSplit(o.crease);
   if (o.crease_cut >= 0)
     seg.setCreaseCut(o.crease_cut);
+  if (o.crease_cut >= 0 && seg.getCreaseCut() != o.crease_cut)
+    fail("-creasecut needs a value in [0, 1]");
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);

@@ -293,11 +293,11 @@ std::vector<Flag> algorithmFlags() {
                "crease splits: split a supernode along its most concave level cut of the "
                "centrality when that cut's mean concave bend is >= C, >= 0; 0 = off",
                num(d.getCreaseSplit()), 0),
-      realFlag("-crease_cut", "C",
+      realFlag("-crease_cut", "S",
                "crease cuts: split a supernode no level cut splits along its minimum cut "
-               "weighted by concave bend when that cut's mean concave bend is >= C, >= 0; 0 = "
-               "off",
-               num(d.getCreaseCut()), 0),
+               "weighted by concave bend when a share >= S of the edges it crosses are "
+               "concave, in [0, 1]; 0 = off",
+               num(d.getCreaseCut()), 0, 1),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",

@@ -271,11 +271,11 @@ public:
 
   /** \brief Crease cuts: a supernode that no level cut splits (setCreaseSplit()) is also split
    * along the minimum cut between its top and its bottom fifth (by the centrality) over its kNN
-   * edges, each costing its length times exp(-3 c), c its concave bend, when that cut's mean
-   * concave bend is at least c; such a cut can follow a crease that slants across the level
-   * sets (a shoulder, the base of a digit); >= 0, default 0 = off. Changing it invalidates the
-   * expensive stage. */
-  void setCreaseCut(double concavity);
+   * edges, each costing its length times exp(-3 c), c its concave bend, when at least this share
+   * of the kNN edges the cut crosses are concave (c >= 0.75 times the model's mean bend per
+   * edge); such a cut can follow a crease that slants across the level sets (a shoulder, the
+   * base of a digit); in [0, 1], default 0 = off. Changing it invalidates the expensive stage. */
+  void setCreaseCut(double share);
   double getCreaseCut() const { return crease_cut_; }
 
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,

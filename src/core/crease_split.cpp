@@ -128,8 +128,8 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       in_top[p] = 0;
     return std::make_pair(best, best_end);
   };
-  // The minimum crease cut through s between its top and its bottom (crease cuts): its
-  // concavity (-1 when there is none) and its source side, the top, in descending f. Reads and
+  // The minimum crease cut through s between its top and its bottom (crease cuts): its score
+  // (-1 when there is none) and its source side, the top, in descending f. Reads and
   // writes only s's entries of `local`, so supernodes can be cut in parallel.
   std::vector<std::int32_t> local(crease_cuts ? n : 0, -1);
   constexpr std::int32_t kTopSeed = -2, kBottomSeed = -3;
@@ -216,9 +216,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     auto onTop = [&](std::uint32_t q) {
       return local[q] == kTopSeed || (local[q] >= 0 && source_side[local[q]]);
     };
-    // The cut's concavity: the mean concave bend of the kNN edges inside s it crosses.
-    double sum = 0.0;
-    std::size_t count = 0;
+    // The cut's score: the share of the kNN edges inside s it crosses whose concave bend is at
+    // least cut_min_bend (a crease all along the cut, rather than a few deep folds).
+    std::size_t concave_count = 0, count = 0;
     for (std::uint32_t p : pts) {
       if (!onTop(p))
         continue;
@@ -226,7 +226,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         if (q != p && sn.label[q] == s && !onTop(q)) {
-          sum += concave(p, e);
+          concave_count += concave(p, e) >= params.cut_min_bend ? 1 : 0;
           ++count;
         }
       }
@@ -234,7 +234,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     for (std::uint32_t p : pts)
       local[p] = -1;
     if (count > 0)
-      result.first = sum / static_cast<double>(count);
+      result.first = static_cast<double>(concave_count) / static_cast<double>(count);
     return result;
   };
   // Every supernode in the queue is tested in turn. The sweeps of all those in the queue

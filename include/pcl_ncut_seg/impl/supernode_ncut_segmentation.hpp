@@ -370,16 +370,16 @@ void pcl::SupernodeNCutSegmentation<PointT>::setCreaseSplit(double concavity) {
 }
 
 template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setCreaseCut(double concavity) {
-  if (!(concavity >= 0.0) || !std::isfinite(concavity)) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setCreaseCut] concavity must be finite and "
-              ">= 0, got %g; keeping %g.\n",
-              concavity, crease_cut_);
+void pcl::SupernodeNCutSegmentation<PointT>::setCreaseCut(double share) {
+  if (!(share >= 0.0 && share <= 1.0)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setCreaseCut] share must be in [0, 1], got %g; "
+              "keeping %g.\n",
+              share, crease_cut_);
     return;
   }
-  if (concavity != crease_cut_)
+  if (share != crease_cut_)
     invalidate();
-  crease_cut_ = concavity;
+  crease_cut_ = share;
 }
 
 template <typename PointT>
