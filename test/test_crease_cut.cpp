@@ -29,7 +29,9 @@ struct SlantedFold {
   std::vector<int> side; ///< per point, 0 before the crease (x < s(y)), 1 after it
 };
 
-float crease(float y) { return -0.5f + y; }
+float crease(float y) {
+  return -0.5f + y;
+}
 
 SlantedFold slantedFold(int nx, int ny) {
   SlantedFold s;
@@ -108,8 +110,8 @@ TEST(CreaseCut, FollowsACreaseThatSlantsAcrossTheLevelSets) {
   // threshold it cannot reach, nothing splits; at one it can, the cut is straight across and
   // leaves a large share of the points on the wrong side of the crease.
   params.min_concavity = 6.0;
-  const Supernodes level = splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in,
-                                          params);
+  const Supernodes level =
+      splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params);
   EXPECT_EQ(level.size(), 1u);
   params.min_concavity = 0.5;
   const double level_wrong = wrongSideShare(
@@ -118,8 +120,8 @@ TEST(CreaseCut, FollowsACreaseThatSlantsAcrossTheLevelSets) {
   params.min_concavity = 6.0;
   params.cut_concavity = 0.9;
   std::size_t splits = 0;
-  const Supernodes cut = splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in,
-                                        params, &splits);
+  const Supernodes cut =
+      splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params, &splits);
   const double cut_wrong = wrongSideShare(cut, s.side);
   std::cout << "slanted crease: wrong side " << level_wrong << " (best level cut), " << cut_wrong
             << " (crease cut, " << cut.size() << " supernodes)" << std::endl;
@@ -129,18 +131,15 @@ TEST(CreaseCut, FollowsACreaseThatSlantsAcrossTheLevelSets) {
   EXPECT_GT(level_wrong, 0.1);
   // With crease cuts alone (level cuts off) the same.
   params.min_concavity = 0.0;
-  EXPECT_LT(wrongSideShare(splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in,
-                                          params),
-                           s.side),
+  EXPECT_LT(wrongSideShare(
+                splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params), s.side),
             0.02);
   // Off (0, the paper's supernodes), and a bend no edge of the crease reaches: no split.
   params.cut_concavity = 0.0;
-  EXPECT_EQ(splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params).size(),
-            1u);
+  EXPECT_EQ(splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params).size(), 1u);
   params.cut_concavity = 0.9;
   params.cut_min_bend = 1e6;
-  EXPECT_EQ(splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params).size(),
-            1u);
+  EXPECT_EQ(splitAtCreases(s.graph, s.xyz.data(), s.normals, s.f, s.radii, in, params).size(), 1u);
 }
 
 TEST(CreaseCut, SameSupernodesForAnyThreadCount) {

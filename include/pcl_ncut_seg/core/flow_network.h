@@ -113,5 +113,4 @@ struct FlowNetwork {
   }
 };
 
-
 } // namespace pcl_ncut_seg
