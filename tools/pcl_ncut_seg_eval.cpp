@@ -67,6 +67,7 @@ struct Options {
   double neck_bound = -1; ///< setNeckBound
   double band = -1, band_crease = -1; ///< setBoundaryBand, setBoundaryCreaseWeight
   double crease = -1;       ///< setCreaseSplit
+  double crease_cut = -1;   ///< setCreaseCut
 };
 
 [[noreturn]] void fail(const std::string& reason) {
@@ -103,6 +104,7 @@ void printHelp() {
          "  -band F           setBoundaryBand (default: the library's default)\n"
          "  -bandcrease W     setBoundaryCreaseWeight (default: the library's default)\n"
          "  -crease C         setCreaseSplit (default: the library's default)\n"
+         "  -creasecut S      setCreaseCut (default: the library's default)\n"
          "  -exact            exact centrality (as pcl_ncut_seg -exact)\n"
          "  -paper            the paper to the letter (as pcl_ncut_seg -paper)\n"
          "  -quiet            print errors only\n";
@@ -210,6 +212,8 @@ Options parseOptions(int argc, char** argv) {
       o.band_crease = parseNumber(a, v);
     } else if (a == "-crease") {
       o.crease = parseNumber(a, v);
+    } else if (a == "-creasecut") {
+      o.crease_cut = parseNumber(a, v);
     } else if (a == "-bridge") {
       o.bridge_gap = parseNumber(a, v);
     } else if (a == "-neck") {
@@ -303,12 +307,17 @@ void configure(Segmenter& seg, const Options& o) {
     seg.setBoundaryCreaseWeight(o.band_crease);
   if (o.crease >= 0)
     seg.setCreaseSplit(o.crease);
+  if (o.crease_cut >= 0)
+    seg.setCreaseCut(o.crease_cut);
+  if (o.crease_cut >= 0 && seg.getCreaseCut() != o.crease_cut)
+    fail("-creasecut needs a value in [0, 1]");
   if (o.paper) {
     seg.setBridgeGap(0.0);
     seg.setConcavityWeight(0.0);
     seg.setFlatElongation(0.0);
     seg.setBoundaryBand(0.0);
     seg.setCreaseSplit(0.0);
+    seg.setCreaseCut(0.0);
     seg.setNormalizeWidth(false);
     seg.setConnectAdjacentTrees(false);
     seg.setConnectAllAdjacent(false);

@@ -293,6 +293,11 @@ std::vector<Flag> algorithmFlags() {
                "crease splits: split a supernode along its most concave level cut of the "
                "centrality when that cut's mean concave bend is >= C, >= 0; 0 = off",
                num(d.getCreaseSplit()), 0),
+      realFlag("-crease_cut", "S",
+               "crease cuts: split a supernode no level cut splits along its minimum cut "
+               "weighted by concave bend when a share >= S of the edges it crosses are "
+               "concave, in [0, 1]; 0 = off",
+               num(d.getCreaseCut()), 0, 1),
       realFlag("-min_fraction", "F",
                "threshold cut: a part is bisected only if each side keeps this fraction of the "
                "feature area, in [0, 0.5]",
@@ -379,6 +384,8 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setNeckBound(flags.real("-neck_bound"));
   if (flags.has("-crease"))
     seg.setCreaseSplit(flags.real("-crease"));
+  if (flags.has("-crease_cut"))
+    seg.setCreaseCut(flags.real("-crease_cut"));
   if (flags.has("-bridge_gap"))
     seg.setBridgeGap(flags.real("-bridge_gap"));
   if (flags.has("-boundary_band"))
@@ -402,6 +409,7 @@ bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg) {
     seg.setFlatElongation(0.0);
     seg.setBoundaryBand(0.0);
     seg.setCreaseSplit(0.0);
+    seg.setCreaseCut(0.0);
     seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
   }
   return true;

@@ -269,6 +269,15 @@ public:
   void setCreaseSplit(double concavity);
   double getCreaseSplit() const { return crease_split_; }
 
+  /** \brief Crease cuts: a supernode that no level cut splits (setCreaseSplit()) is also split
+   * along the minimum cut between its top and its bottom fifth (by the centrality) over its kNN
+   * edges, each costing its length times exp(-3 c), c its concave bend, when at least this share
+   * of the kNN edges the cut crosses are concave (c >= 0.75 times the model's mean bend per
+   * edge); such a cut can follow a crease that slants across the level sets (a shoulder, the
+   * base of a digit); in [0, 1], default 0 = off. Changing it invalidates the expensive stage. */
+  void setCreaseCut(double share);
+  double getCreaseCut() const { return crease_cut_; }
+
   /** \brief Threads for the kNN queries and the centrality phase; 0 (default) uses all cores,
    * and more than the machine's processors are not started. Output does not depend on it. */
   void setNumberOfThreads(unsigned threads);
@@ -341,6 +350,7 @@ protected:
   bool cad_mode_ = false;
   double bridge_gap_ = 3.0;
   double crease_split_ = 0.75; ///< setCreaseSplit
+  double crease_cut_ = 0.0;    ///< setCreaseCut
   pcl_ncut_seg::CadParams cad_;
   pcl_ncut_seg::SimilarityParams similarity_;
   pcl_ncut_seg::CutParams cut_;

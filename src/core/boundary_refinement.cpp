@@ -2,6 +2,7 @@
 // 2003's fuzzy cuts over the kNN graph).
 #include <pcl_ncut_seg/core/boundary_refinement.h>
 #include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/flow_network.h>
 #include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
@@ -36,112 +37,6 @@ std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
   return crease;
 }
 
-namespace {
-
-/// Minimum s-t cut of a small network (a band of points and two terminals) in CSR form, by
-/// push-relabel (FIFO, with global relabelling; Goldberg and Tarjan): only the first phase,
-/// the maximum preflow, is needed for the cut. Sequential, so the cut is the same whatever the
-/// number of threads. Each undirected edge is two arcs, each the other's reverse.
-struct FlowNetwork {
-  /// An arc with its residual capacity and its reverse (together: one cache line per arc).
-  struct Arc {
-    double cap;
-    std::uint32_t to, rev;
-  };
-  std::vector<std::uint32_t> first; ///< size nodes + 1
-  std::vector<Arc> arc;
-
-  std::uint32_t nodes() const { return static_cast<std::uint32_t>(first.size() - 1); }
-
-  /// The nodes that cannot reach t in the residual network after a maximum preflow from s.
-  std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t) {
-    const std::uint32_t n = nodes();
-    std::vector<std::uint32_t> height(n), cur(first.begin(), first.end() - 1);
-    std::vector<double> excess(n, 0.0);
-    std::vector<char> queued(n, 0);
-    std::vector<std::uint32_t> queue;
-    std::size_t head = 0;
-    // Exact distances to t over residual arcs; n for nodes that cannot reach it.
-    auto globalRelabel = [&]() {
-      std::fill(height.begin(), height.end(), n);
-      std::vector<std::uint32_t> bfs{t};
-      height[t] = 0;
-      for (std::size_t i = 0; i < bfs.size(); ++i) {
-        const std::uint32_t u = bfs[i];
-        for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
-          const std::uint32_t w = arc[a].to;
-          if (w != s && height[w] == n && arc[arc[a].rev].cap > 0.0) {
-            height[w] = height[u] + 1;
-            bfs.push_back(w);
-          }
-        }
-      }
-      std::copy(first.begin(), first.end() - 1, cur.begin());
-    };
-    auto activate = [&](std::uint32_t v) {
-      if (v != s && v != t && !queued[v] && excess[v] > 0.0 && height[v] < n) {
-        queued[v] = 1;
-        queue.push_back(v);
-      }
-    };
-    globalRelabel();
-    for (std::uint32_t a = first[s]; a < first[s + 1]; ++a) {
-      const double c = arc[a].cap;
-      if (!(c > 0.0))
-        continue;
-      arc[a].cap = 0.0;
-      arc[arc[a].rev].cap += c;
-      excess[arc[a].to] += c;
-      activate(arc[a].to);
-    }
-    std::size_t relabels = 0;
-    while (head < queue.size()) {
-      const std::uint32_t u = queue[head++];
-      queued[u] = 0;
-      while (excess[u] > 0.0 && height[u] < n) {
-        if (cur[u] == first[u + 1]) {
-          std::uint32_t h = n;
-          for (std::uint32_t a = first[u]; a < first[u + 1]; ++a)
-            if (arc[a].cap > 0.0)
-              h = std::min(h, height[arc[a].to] + 1);
-          height[u] = std::min(h, n);
-          cur[u] = first[u];
-          if (++relabels >= n / 4 + 1) {
-            // Heights drift from the distances: recompute them (every n / 4 relabels: about
-            // twice as fast as every n on a 1M-point model).
-            relabels = 0;
-            globalRelabel();
-            queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
-            head = 0;
-          }
-          continue;
-        }
-        const std::uint32_t a = cur[u], v = arc[a].to;
-        if (arc[a].cap > 0.0 && height[u] == height[v] + 1) {
-          const double d = std::min(excess[u], arc[a].cap);
-          arc[a].cap -= d;
-          arc[arc[a].rev].cap += d;
-          excess[u] -= d;
-          excess[v] += d;
-          activate(v);
-          if (!(arc[a].cap > 0.0))
-            ++cur[u];
-        } else {
-          ++cur[u];
-        }
-      }
-    }
-    // The sink side: nodes that reach t through residual arcs, i.e. those an exact relabelling
-    // leaves below n (s cannot reach t once the preflow is maximum).
-    globalRelabel();
-    std::vector<char> source(n);
-    for (std::uint32_t v = 0; v < n; ++v)
-      source[v] = height[v] == n;
-    return source;
-  }
-};
-
-} // namespace
 
 namespace {
 

@@ -1,6 +1,7 @@
 // Splitting supernodes along concave creases (an extension of Sec. 4.3; see crease_split.h).
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/crease_split.h>
+#include <pcl_ncut_seg/core/flow_network.h>
 #include <pcl_ncut_seg/core/prefetch.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
 #include <pcl_ncut_seg/core/threads.h>
@@ -37,7 +38,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   if (num_splits)
     *num_splits = 0;
   const std::size_t n = graph.numVertices();
-  if (!(params.min_concavity > 0.0) || n == 0 || sn.size() == 0)
+  const bool level_cuts = params.min_concavity > 0.0;
+  const bool crease_cuts = params.cut_concavity > 0.0;
+  if ((!level_cuts && !crease_cuts) || n == 0 || sn.size() == 0)
     return sn;
 
   auto bend = [&](std::uint32_t p, std::uint32_t q, float length) {
@@ -125,11 +128,121 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       in_top[p] = 0;
     return std::make_pair(best, best_end);
   };
+  // The minimum crease cut through s between its top and its bottom (crease cuts): its score
+  // (-1 when there is none) and its source side, the top, in descending f. Reads and
+  // writes only s's entries of `local`, so supernodes can be cut in parallel.
+  std::vector<std::int32_t> local(crease_cuts ? n : 0, -1);
+  constexpr std::int32_t kTopSeed = -2, kBottomSeed = -3;
+  auto creaseCut = [&](std::uint32_t s) {
+    std::pair<double, std::vector<std::uint32_t>> result(-1.0, {});
+    const std::vector<std::uint32_t>& pts = points[s];
+    double area = 0.0;
+    for (std::uint32_t p : pts)
+      area += pointArea(p);
+    if (area < 2.0 * min_area)
+      return result;
+    const double seed = std::max(min_area, params.cut_seed_fraction * area);
+    // The top seed: the highest points up to `seed` of area; the bottom seed likewise.
+    std::size_t top_end = 0, bottom_begin = pts.size();
+    for (double a = 0.0; top_end < pts.size() && a < seed; ++top_end)
+      a += pointArea(pts[top_end]);
+    for (double a = 0.0; bottom_begin > 0 && a < seed; --bottom_begin)
+      a += pointArea(pts[bottom_begin - 1]);
+    if (top_end >= bottom_begin)
+      return result;
+    const auto m = static_cast<std::uint32_t>(bottom_begin - top_end);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      local[pts[i]] = i < top_end                ? kTopSeed
+                      : i >= bottom_begin        ? kBottomSeed
+                                                 : static_cast<std::int32_t>(i - top_end);
+    auto concave = [&](std::uint32_t p, std::uint32_t e) {
+      return std::max(0.0, -bend(p, graph.targets[e], graph.lengths[e])) / typical;
+    };
+    auto capacity = [&](std::uint32_t p, std::uint32_t e) {
+      return static_cast<double>(graph.lengths[e]) *
+             std::exp(-params.cut_crease_weight * concave(p, e));
+    };
+    // The network: the points between the seeds, the source (top seed) and the sink.
+    const std::uint32_t source = m, sink = m + 1;
+    FlowNetwork net;
+    net.first.assign(m + 3, 0);
+    std::vector<double> to_source(m, 0.0), to_sink(m, 0.0);
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t p = pts[top_end + i];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (q == p || sn.label[q] != s)
+          continue;
+        if (local[q] >= 0)
+          ++net.first[i + 1];
+        else if (local[q] == kTopSeed)
+          to_source[i] += capacity(p, e);
+        else
+          to_sink[i] += capacity(p, e);
+      }
+      if (to_source[i] > 0.0) {
+        ++net.first[i + 1];
+        ++net.first[source + 1];
+      }
+      if (to_sink[i] > 0.0) {
+        ++net.first[i + 1];
+        ++net.first[sink + 1];
+      }
+    }
+    for (std::uint32_t v = 0; v < m + 2; ++v)
+      net.first[v + 1] += net.first[v];
+    net.arc.resize(net.first[m + 2]);
+    std::vector<std::uint32_t> fill(net.first.begin(), net.first.end() - 1);
+    auto addPair = [&](std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
+      const std::uint32_t a = fill[u]++, b = fill[v]++;
+      net.arc[a] = {cap_uv, v, b};
+      net.arc[b] = {cap_vu, u, a};
+    };
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t p = pts[top_end + i];
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (q > p && sn.label[q] == s && local[q] >= 0) {
+          const double c = capacity(p, e);
+          addPair(i, static_cast<std::uint32_t>(local[q]), c, c);
+        }
+      }
+      if (to_source[i] > 0.0)
+        addPair(source, i, to_source[i], 0.0);
+      if (to_sink[i] > 0.0)
+        addPair(i, sink, to_sink[i], 0.0);
+    }
+    const std::vector<char> source_side = net.sourceSide(source, sink);
+    auto onTop = [&](std::uint32_t q) {
+      return local[q] == kTopSeed || (local[q] >= 0 && source_side[local[q]]);
+    };
+    // The cut's score: the share of the kNN edges inside s it crosses whose concave bend is at
+    // least cut_min_bend (a crease all along the cut, rather than a few deep folds).
+    std::size_t concave_count = 0, count = 0;
+    for (std::uint32_t p : pts) {
+      if (!onTop(p))
+        continue;
+      result.second.push_back(p);
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        if (q != p && sn.label[q] == s && !onTop(q)) {
+          concave_count += concave(p, e) >= params.cut_min_bend ? 1 : 0;
+          ++count;
+        }
+      }
+    }
+    for (std::uint32_t p : pts)
+      local[p] = -1;
+    if (count > 0)
+      result.first = static_cast<double>(concave_count) / static_cast<double>(count);
+    return result;
+  };
   // Every supernode in the queue is tested in turn. The sweeps of all those in the queue
   // whose points changed since their last sweep (all at first) are made ahead, in parallel,
   // biggest first; a sweep depends only on the points of its supernode, and a supernode whose
   // points change later is swept again, so the result does not depend on the threads.
   std::vector<std::pair<double, std::size_t>> first(sn.size());
+  std::vector<std::pair<double, std::vector<std::uint32_t>>> crease_cut(sn.size());
   std::vector<char> fresh(sn.size(), 0); // first[s] is the sweep of s's current points
   const int threads = usableThreads(params.num_threads);
   std::deque<std::uint32_t> queue;
@@ -149,19 +262,36 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       });
       const auto num_ahead = static_cast<std::ptrdiff_t>(ahead.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-      for (std::ptrdiff_t k = 0; k < num_ahead; ++k)
-        first[ahead[k]] = sweep(ahead[k]);
+      for (std::ptrdiff_t k = 0; k < num_ahead; ++k) {
+        const std::uint32_t t = ahead[k];
+        first[t] = level_cuts ? sweep(t) : std::make_pair(-1.0, std::size_t{0});
+        crease_cut[t] = {-1.0, {}};
+        if (crease_cuts && !(level_cuts && first[t].first >= params.min_concavity))
+          crease_cut[t] = creaseCut(t);
+      }
     }
     const std::uint32_t s = queue.front();
     queue.pop_front();
     const std::vector<std::uint32_t>& pts = points[s];
     const auto [best, best_end] = first[s];
     fresh[s] = 0;
-    if (best < params.min_concavity)
+    std::vector<std::uint32_t> top, bottom;
+    if (level_cuts && best >= params.min_concavity) {
+      top.assign(pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(best_end));
+      bottom.assign(pts.begin() + static_cast<std::ptrdiff_t>(best_end), pts.end());
+    } else if (crease_cuts && crease_cut[s].first >= params.cut_concavity) {
+      // The source side of the crease cut is the top; both keep the descending order.
+      top = std::move(crease_cut[s].second);
+      std::size_t t = 0;
+      for (std::uint32_t p : pts) {
+        if (t < top.size() && top[t] == p)
+          ++t;
+        else
+          bottom.push_back(p);
+      }
+    } else {
       continue;
-
-    std::vector<std::uint32_t> top(pts.begin(), pts.begin() + best_end);
-    std::vector<std::uint32_t> bottom(pts.begin() + best_end, pts.end());
+    }
     if (!sn.children[s].empty()) {
       // Merge-up: the top joins the supernodes that terminate at s's saddle, grown from them
       // highest f first; a point none of whose processed neighbours is in them stays below.
@@ -196,8 +326,11 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       if (stay.size() == top.size())
         continue; // nothing moved: s stays as it is
       ++splits;
-      // The points that stay precede the bottom in f: both stay in descending order.
+      // The points that stay and the bottom are each in descending f (after a level cut the
+      // former precede the latter): merge the two runs.
+      const auto stayed = static_cast<std::ptrdiff_t>(stay.size());
       stay.insert(stay.end(), bottom.begin(), bottom.end());
+      std::inplace_merge(stay.begin(), stay.begin() + stayed, stay.end(), descending);
       points[s] = std::move(stay);
       sn.origin[s] = points[s].front();
       queue.push_back(s);
@@ -207,6 +340,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       ++splits;
       fresh.push_back(0);
       first.emplace_back();
+      crease_cut.emplace_back();
       sn.origin.push_back(sn.origin[s]);
       sn.at_saddle.push_back(sn.at_saddle[s]);
       sn.parent.push_back(s);

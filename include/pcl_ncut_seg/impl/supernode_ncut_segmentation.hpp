@@ -370,6 +370,19 @@ void pcl::SupernodeNCutSegmentation<PointT>::setCreaseSplit(double concavity) {
 }
 
 template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setCreaseCut(double share) {
+  if (!(share >= 0.0 && share <= 1.0)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::setCreaseCut] share must be in [0, 1], got %g; "
+              "keeping %g.\n",
+              share, crease_cut_);
+    return;
+  }
+  if (share != crease_cut_)
+    invalidate();
+  crease_cut_ = share;
+}
+
+template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setAdjacentShare(double share) {
   if (!(share >= 0.0 && share <= 1.0)) {
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::setAdjacentShare] share must be in [0, 1], got "
@@ -554,7 +567,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     pcl_ncut_seg::bridgeComponents(graph, xyz.data(), bridge_gap_);
   const bool refine_boundaries = !cad_mode_ && boundary_.band_fraction > 0.0;
   if (!cad_mode_ && !(similarity_.concavity_weight > 0.0) && !refine_boundaries &&
-      !(crease_split_ > 0.0)) // still needed by these
+      !(crease_split_ > 0.0) && !(crease_cut_ > 0.0)) // still needed by these
     std::vector<float>().swap(xyz);
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -599,7 +612,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
         pcl_ncut_seg::analyze(std::move(graph), params, times_));
     std::vector<float> normals;
     double typical_bend = 0.0; // meanAbsBend(), computed once for the three users below
-    if (crease_split_ > 0.0) {
+    if (crease_split_ > 0.0 || crease_cut_ > 0.0) {
       // Split supernodes along concave creases (core/crease_split.h): refinement time.
       const auto crease_start = std::chrono::steady_clock::now();
       pcl_ncut_seg::Analysis& a = *analysis_;
@@ -608,6 +621,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
       pcl_ncut_seg::CreaseSplitParams crease;
       crease.typical_bend = typical_bend;
       crease.min_concavity = crease_split_;
+      crease.cut_concavity = crease_cut_;
       crease.area_fraction = area_fraction_;
       crease.num_threads = num_threads_;
       std::size_t splits = 0;
