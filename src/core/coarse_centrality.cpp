@@ -40,8 +40,7 @@ struct alignas(64) BallSearch {
 /// uncovered, so the cover is the sequential one for any number of threads.
 std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
                                         const std::vector<std::uint32_t>& visit,
-                                        std::vector<BallSearch>& searches,
-                                        const std::vector<float>& bound) {
+                                        std::vector<BallSearch>& searches) {
   const std::size_t n = g.numVertices();
   const int threads = static_cast<int>(searches.size());
   std::vector<std::uint8_t> covered(n, 0);
@@ -78,7 +77,7 @@ std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       BallSearch& s = searches[threadId()];
       s.touched.clear();
-      s.search.run(candidates[i], s.dist.data(), bound.data(), &s.touched);
+      s.search.runWithin(candidates[i], s.dist.data(), radius, &s.touched);
       visits += s.touched.size();
       std::size_t inside = 0;
       for (std::uint32_t u : s.touched) {
@@ -246,8 +245,7 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   for (std::uint32_t v = 0; v < n; ++v)
     visit[tie_rank ? tie_rank[v] : v] = v;
   for (int attempt = 0; attempt < 3; ++attempt) {
-    const std::vector<float> bound(n, static_cast<float>(radius));
-    reps = coverByBalls(g, static_cast<float>(radius), visit, searches, bound);
+    reps = coverByBalls(g, static_cast<float>(radius), visit, searches);
     const double ratio =
         static_cast<double>(reps.size()) / static_cast<double>(num_representatives);
     if (ratio > 0.8 && ratio < 1.25)
@@ -349,8 +347,8 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   const std::size_t step = std::max<std::size_t>(1, c / 32);
   std::vector<std::vector<std::pair<float, float>>> pairs((c + step - 1) / step);
   {
-    const std::vector<float> fine_bound(n, static_cast<float>(8.0 * radius));
-    const std::vector<float> coarse_bound(c, static_cast<float>(12.0 * radius));
+    const auto fine_bound = static_cast<float>(8.0 * radius);
+    const auto coarse_bound = static_cast<float>(12.0 * radius);
 #pragma omp parallel num_threads(threads)
     {
       BallSearch& fine = searches[threadId()];
@@ -362,9 +360,9 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
         const std::size_t a = static_cast<std::size_t>(si) * step;
         fine.touched.clear();
         coarse_touched.clear();
-        fine.search.run(reps[a], fine.dist.data(), fine_bound.data(), &fine.touched);
-        coarse_search.run(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound.data(),
-                          &coarse_touched);
+        fine.search.runWithin(reps[a], fine.dist.data(), fine_bound, &fine.touched);
+        coarse_search.runWithin(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound,
+                                &coarse_touched);
         for (std::uint32_t b : coarse_touched) {
           const float d = fine.dist[reps[b]];
           if (d >= 3.0 * radius && d <= 8.0 * radius)
