@@ -440,7 +440,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     if (pcl::isXYZFinite((*input_)[idx]))
       valid.push_back(static_cast<int>(idx));
   }
-  std::sort(valid.begin(), valid.end());
+  if (!std::is_sorted(valid.begin(), valid.end())) // the usual indices are sorted already
+    std::sort(valid.begin(), valid.end());
   const std::size_t before = valid.size();
   valid.erase(std::unique(valid.begin(), valid.end()), valid.end());
   if (valid.size() < before)
