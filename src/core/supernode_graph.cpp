@@ -27,6 +27,9 @@ Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<floa
   std::vector<std::uint32_t> touched;
   for (std::uint32_t i = 0; i < l; ++i) {
     touched.clear();
+    // Most edges stay inside i: their sum is kept in a register (row[i] in memory would make
+    // every addition wait for the previous one's store). Each sum adds in the same order.
+    double self = 0.0;
     for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
       const std::uint32_t p = members[k];
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -34,11 +37,20 @@ Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<floa
         const std::uint32_t j = label[q];
         if (j < i)
           continue; // counted from j's side: conn is symmetric on a symmetric graph
+        // eq. (8) with the norm of eq. (3); +tiny keeps zero-length edges recorded
+        const double d = featureDistance(f[p] - f[q], graph.lengths[e]) + 1e-300;
+        if (j == i) {
+          self += d;
+          continue;
+        }
         if (row[j] == 0.0)
           touched.push_back(j);
-        // eq. (8) with the norm of eq. (3); +tiny keeps zero-length edges recorded
-        row[j] += featureDistance(f[p] - f[q], graph.lengths[e]) + 1e-300;
+        row[j] += d;
       }
+    }
+    if (self != 0.0) {
+      touched.push_back(i);
+      row[i] = self;
     }
     std::sort(touched.begin(), touched.end());
     for (std::uint32_t j : touched) {
