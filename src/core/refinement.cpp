@@ -201,6 +201,7 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   // which can make another supernode eligible.
   std::vector<std::uint32_t> by_f;
   std::vector<std::uint64_t> sort_keys; // merge-up: by_f's sort keys
+  std::vector<std::uint32_t> members;    // merge-up: the points of s
   std::vector<std::uint32_t> slot(n, kNone); // merge-up: position of a point in by_f
   std::vector<std::uint32_t> kid_index;      // merge-up: position of a supernode in kids
   std::vector<std::uint32_t> edge_kid;       // merge-up: per edge of a point, see below
@@ -228,7 +229,8 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
         by_f.resize(sort_keys.size());
         for (std::size_t i = 0; i < sort_keys.size(); ++i)
           by_f[i] = static_cast<std::uint32_t>(sort_keys[i]);
-        w.points[s].clear();
+        members.clear();
+        members.swap(w.points[s]); // s's points in their own order, which follows memory
         w.area[s] = 0.0;
         // Passes over the points in by_f order, each point joining the child most of its
         // neighbours belong to, until a pass changes nothing. Simulated by events: a point is
@@ -254,11 +256,13 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
           }
           return false;
         };
+        // Read in s's own order (by_f jumps around memory), then queued in by_f order.
+        for (std::uint32_t p : members)
+          if (touchesChild(p))
+            state[slot[p]] = 1;
         for (std::uint32_t i = 0; i < count; ++i)
-          if (touchesChild(by_f[i])) {
-            state[i] = 1;
+          if (state[i] == 1)
             turns.push(i); // pass 0
-          }
         while (!turns.empty()) {
           const std::uint64_t turn = turns.top();
           turns.pop();
