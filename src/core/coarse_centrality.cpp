@@ -275,25 +275,37 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   std::vector<std::vector<std::pair<std::uint32_t, float>>> higher(c);
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<std::pair<std::uint32_t, float>> found;
+    // The shortest crossing to each neighbour cell b so far (+infinity between cells), and
+    // the cells b met: a few per cell, sorted at the end (no sort of every crossing edge).
+    std::vector<float> shortest(c, kInf);
+    std::vector<std::uint8_t> is_met(c, 0);
+    std::vector<std::uint32_t> met;
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t ai = 0; ai < static_cast<std::ptrdiff_t>(c); ++ai) {
       const auto a = static_cast<std::uint32_t>(ai);
-      found.clear();
+      met.clear();
       for (std::uint32_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i) {
         const std::uint32_t u = cell_vertices[i];
         for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
           const std::uint32_t v = g.targets[e];
           const std::uint32_t b = near[v].first;
-          if (a < b)
-            found.emplace_back(b, near[u].first_dist + g.lengths[e] + near[v].first_dist);
+          if (a < b) {
+            const float length = near[u].first_dist + g.lengths[e] + near[v].first_dist;
+            if (!is_met[b]) {
+              is_met[b] = 1;
+              met.push_back(b);
+            }
+            shortest[b] = std::min(shortest[b], length);
+          }
         }
       }
-      std::sort(found.begin(), found.end()); // the shortest first for each b
+      std::sort(met.begin(), met.end());
       auto& out = higher[a];
-      for (std::size_t i = 0; i < found.size(); ++i)
-        if (i == 0 || found[i].first != found[i - 1].first)
-          out.push_back(found[i]);
+      for (std::uint32_t b : met) {
+        out.emplace_back(b, shortest[b]);
+        shortest[b] = kInf;
+        is_met[b] = 0;
+      }
     }
   }
   cell_vertices = std::vector<std::uint32_t>();
