@@ -275,10 +275,10 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   std::vector<std::vector<std::pair<std::uint32_t, float>>> higher(c);
 #pragma omp parallel num_threads(threads)
   {
-    // The shortest crossing to each neighbour cell b so far (+infinity between cells), and
-    // the cells b met: a few per cell, sorted at the end (no sort of every crossing edge).
-    std::vector<float> shortest(c, kInf);
-    std::vector<std::uint8_t> is_met(c, 0);
+    // The shortest crossing to each neighbour cell b so far, in the thread's search distances
+    // (n >= c floats, +infinity between searches and between cells: no more memory), and the
+    // cells b met: a few per cell, sorted at the end (no sort of every crossing edge).
+    float* shortest = searches[threadId()].dist.data();
     std::vector<std::uint32_t> met;
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t ai = 0; ai < static_cast<std::ptrdiff_t>(c); ++ai) {
@@ -291,21 +291,19 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
           const std::uint32_t b = near[v].first;
           if (a < b) {
             const float length = near[u].first_dist + g.lengths[e] + near[v].first_dist;
-            if (!is_met[b]) {
-              is_met[b] = 1;
-              met.push_back(b);
-            }
+            if (shortest[b] == kInf)
+              met.push_back(b); // (again if the length is +infinity: dropped below)
             shortest[b] = std::min(shortest[b], length);
           }
         }
       }
       std::sort(met.begin(), met.end());
       auto& out = higher[a];
-      for (std::uint32_t b : met) {
-        out.emplace_back(b, shortest[b]);
+      for (std::size_t i = 0; i < met.size(); ++i)
+        if (i == 0 || met[i] != met[i - 1])
+          out.emplace_back(met[i], shortest[met[i]]);
+      for (std::uint32_t b : met)
         shortest[b] = kInf;
-        is_met[b] = 0;
-      }
     }
   }
   cell_vertices = std::vector<std::uint32_t>();
