@@ -83,14 +83,14 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
       c += put[p * k + j] != 0;
     return c;
   };
+  for (std::size_t v = 0; v < n; ++v)
+    g.offsets[v + 1] += g.offsets[v] + ownCount(v);
+  g.targets.resize(g.offsets[n]);
   // fill[v]: where v's next reverse entry goes.
   std::vector<std::uint32_t> fill(n);
-  for (std::size_t v = 0; v < n; ++v) {
-    const std::uint32_t own = ownCount(v);
-    fill[v] = g.offsets[v] + own;
-    g.offsets[v + 1] += g.offsets[v] + own;
-  }
-  g.targets.resize(g.offsets[n]);
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r)
+    fill[r] = g.offsets[r] + ownCount(static_cast<std::size_t>(r));
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto p = static_cast<std::size_t>(r);
