@@ -475,7 +475,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     std::vector<float> reordered_raw(3 * order.point.size());
     for (std::size_t v = 0; v < order.point.size(); ++v) {
       reordered[v] = valid[order.point[v]];
-      std::copy_n(&raw[3 * std::size_t(order.point[v])], 3, &reordered_raw[3 * v]);
+      for (std::size_t d = 0; d < 3; ++d) // (no library call per point)
+        reordered_raw[3 * v + d] = raw[3 * std::size_t(order.point[v]) + d];
     }
     for (const auto& c : order.copies)
       duplicates_.emplace_back(valid[c.first], c.second);
