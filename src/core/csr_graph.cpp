@@ -114,7 +114,21 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto v = static_cast<std::size_t>(r);
-    std::sort(g.targets.begin() + g.offsets[v], g.targets.begin() + g.offsets[v + 1]);
+    // Rows are short (k and a few more): an insertion sort in place, without the library
+    // sort's block moves; long rows (a hub) go to std::sort. Targets in a row are distinct.
+    std::uint32_t* row = g.targets.data() + g.offsets[v];
+    const std::uint32_t degree = g.offsets[v + 1] - g.offsets[v];
+    if (degree > 32) {
+      std::sort(row, row + degree);
+    } else {
+      for (std::uint32_t i = 1; i < degree; ++i) {
+        const std::uint32_t t = row[i];
+        std::uint32_t j = i;
+        for (; j > 0 && row[j - 1] > t; --j)
+          row[j] = row[j - 1];
+        row[j] = t;
+      }
+    }
     for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
       g.lengths[e] = distance(xyz, v, g.targets[e]);
   }
