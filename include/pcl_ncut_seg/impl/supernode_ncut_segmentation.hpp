@@ -618,7 +618,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
       if (splits > 0) {
         a.stats = pcl_ncut_seg::featureStats(a.supernodes, a.centrality.f, a.radii);
         a.conn =
-            pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+            pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label,
+                                                num_threads_);
       }
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - crease_start).count();
