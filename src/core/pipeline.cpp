@@ -48,7 +48,7 @@ Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times
   report("Snod", 1.0);
   times.supernodes = clock.lap();
   report("LRef", 0.0);
-  a.radii = pointRadii(a.graph, a.centrality.f);
+  a.radii = pointRadii(a.graph, a.centrality.f, params.num_threads);
   a.supernodes =
       refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);

@@ -1,6 +1,7 @@
 // Sec. 4.3: feature height (2), area and radius (3), width (4), and the local refinement that
 // merges insignificant supernodes.
 #include <pcl_ncut_seg/core/refinement.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,10 +11,14 @@
 
 namespace pcl_ncut_seg {
 
-std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f) {
+std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f,
+                              unsigned num_threads) {
   const std::size_t n = graph.numVertices();
   std::vector<float> r(n, 0.0f);
-  for (std::uint32_t p = 0; p < n; ++p) {
+  // Each point's mean is its own: the same for any number of threads.
+#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
+  for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(n); ++pi) {
+    const auto p = static_cast<std::uint32_t>(pi);
     const std::uint32_t b = graph.offsets[p], e = graph.offsets[p + 1];
     if (b == e)
       continue;
