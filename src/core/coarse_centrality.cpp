@@ -40,8 +40,7 @@ struct alignas(64) BallSearch {
 /// uncovered, so the cover is the sequential one for any number of threads.
 std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
                                         const std::vector<std::uint32_t>& visit,
-                                        std::vector<BallSearch>& searches,
-                                        const std::vector<float>& bound) {
+                                        std::vector<BallSearch>& searches) {
   const std::size_t n = g.numVertices();
   const int threads = static_cast<int>(searches.size());
   std::vector<std::uint8_t> covered(n, 0);
@@ -78,7 +77,7 @@ std::vector<std::uint32_t> coverByBalls(const CsrGraph& g, float radius,
     for (std::ptrdiff_t i = 0; i < count; ++i) {
       BallSearch& s = searches[threadId()];
       s.touched.clear();
-      s.search.run(candidates[i], s.dist.data(), bound.data(), &s.touched);
+      s.search.runWithin(candidates[i], s.dist.data(), radius, &s.touched);
       visits += s.touched.size();
       std::size_t inside = 0;
       for (std::uint32_t u : s.touched) {
@@ -246,8 +245,7 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   for (std::uint32_t v = 0; v < n; ++v)
     visit[tie_rank ? tie_rank[v] : v] = v;
   for (int attempt = 0; attempt < 3; ++attempt) {
-    const std::vector<float> bound(n, static_cast<float>(radius));
-    reps = coverByBalls(g, static_cast<float>(radius), visit, searches, bound);
+    reps = coverByBalls(g, static_cast<float>(radius), visit, searches);
     const double ratio =
         static_cast<double>(reps.size()) / static_cast<double>(num_representatives);
     if (ratio > 0.8 && ratio < 1.25)
@@ -277,25 +275,35 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   std::vector<std::vector<std::pair<std::uint32_t, float>>> higher(c);
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<std::pair<std::uint32_t, float>> found;
+    // The shortest crossing to each neighbour cell b so far, in the thread's search distances
+    // (n >= c floats, +infinity between searches and between cells: no more memory), and the
+    // cells b met: a few per cell, sorted at the end (no sort of every crossing edge).
+    float* shortest = searches[threadId()].dist.data();
+    std::vector<std::uint32_t> met;
 #pragma omp for schedule(dynamic, 64)
     for (std::ptrdiff_t ai = 0; ai < static_cast<std::ptrdiff_t>(c); ++ai) {
       const auto a = static_cast<std::uint32_t>(ai);
-      found.clear();
+      met.clear();
       for (std::uint32_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i) {
         const std::uint32_t u = cell_vertices[i];
         for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
           const std::uint32_t v = g.targets[e];
           const std::uint32_t b = near[v].first;
-          if (a < b)
-            found.emplace_back(b, near[u].first_dist + g.lengths[e] + near[v].first_dist);
+          if (a < b) {
+            const float length = near[u].first_dist + g.lengths[e] + near[v].first_dist;
+            if (shortest[b] == kInf)
+              met.push_back(b); // (again if the length is +infinity: dropped below)
+            shortest[b] = std::min(shortest[b], length);
+          }
         }
       }
-      std::sort(found.begin(), found.end()); // the shortest first for each b
+      std::sort(met.begin(), met.end());
       auto& out = higher[a];
-      for (std::size_t i = 0; i < found.size(); ++i)
-        if (i == 0 || found[i].first != found[i - 1].first)
-          out.push_back(found[i]);
+      for (std::size_t i = 0; i < met.size(); ++i)
+        if (i == 0 || met[i] != met[i - 1])
+          out.emplace_back(met[i], shortest[met[i]]);
+      for (std::uint32_t b : met)
+        shortest[b] = kInf;
     }
   }
   cell_vertices = std::vector<std::uint32_t>();
@@ -349,8 +357,8 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   const std::size_t step = std::max<std::size_t>(1, c / 32);
   std::vector<std::vector<std::pair<float, float>>> pairs((c + step - 1) / step);
   {
-    const std::vector<float> fine_bound(n, static_cast<float>(8.0 * radius));
-    const std::vector<float> coarse_bound(c, static_cast<float>(12.0 * radius));
+    const auto fine_bound = static_cast<float>(8.0 * radius);
+    const auto coarse_bound = static_cast<float>(12.0 * radius);
 #pragma omp parallel num_threads(threads)
     {
       BallSearch& fine = searches[threadId()];
@@ -362,9 +370,9 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
         const std::size_t a = static_cast<std::size_t>(si) * step;
         fine.touched.clear();
         coarse_touched.clear();
-        fine.search.run(reps[a], fine.dist.data(), fine_bound.data(), &fine.touched);
-        coarse_search.run(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound.data(),
-                          &coarse_touched);
+        fine.search.runWithin(reps[a], fine.dist.data(), fine_bound, &fine.touched);
+        coarse_search.runWithin(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound,
+                                &coarse_touched);
         for (std::uint32_t b : coarse_touched) {
           const float d = fine.dist[reps[b]];
           if (d >= 3.0 * radius && d <= 8.0 * radius)

@@ -32,17 +32,17 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
   // outlier) would otherwise reach into a surface over a distance no surface edge has, and
   // its centrality and area would dominate the refinement thresholds (Sec. 4.3).
   const float kFarEdgeRatio = 10.0f;
-  auto used = [&](std::size_t p, std::uint32_t q) {
-    return q < n && q != p &&
-           (radius[q] == 0.0f || distance(xyz, p, q) <= kFarEdgeRatio * radius[q]);
+  // The test on p -> q of length d (the same length both ways, bit for bit).
+  auto usedAt = [&](std::uint32_t q, float d) {
+    return radius[q] == 0.0f || d <= kFarEdgeRatio * radius[q];
   };
   // Union of both directions. A used p -> q puts q in p's row, and p in q's row unless q -> p
   // is also a used kNN entry (then q's own entry adds it): rows hold no duplicate without a
   // sort-and-unique pass over 2nk entries, so memory stays at the size of the result.
-  auto listsUsed = [&](std::uint32_t q, std::size_t p) {
+  auto listsUsed = [&](std::uint32_t q, std::size_t p, float d) {
     for (std::size_t j = 0; j < k; ++j)
       if (knn[q * k + j] == p)
-        return used(q, static_cast<std::uint32_t>(p));
+        return usedAt(static_cast<std::uint32_t>(p), d);
     return false;
   };
   auto isDuplicateInRow = [&](std::size_t p, std::size_t j) {
@@ -54,57 +54,81 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
   // Per kNN entry p -> q: bit 0, q goes into p's row; bit 1, p goes into q's row too.
   std::vector<std::uint8_t> put(n * k, 0);
   // Rows are filled in any order by the threads and sorted afterwards, so the graph is the
-  // same for any number of threads.
+  // same for any number of threads. A row starts with its own kNN entries (written by the
+  // thread that owns it), then holds the reverse ones (counted and placed atomically).
   CsrGraph g;
   g.offsets.assign(n + 1, 0);
-  std::uint32_t* count = g.offsets.data() + 1;
+  std::uint32_t* reverse_count = g.offsets.data() + 1;
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto p = static_cast<std::size_t>(r);
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
-      if (!used(p, q) || isDuplicateInRow(p, j))
+      if (q >= n || q == p)
         continue;
-      const bool reverse = !listsUsed(q, p);
+      const float d = distance(xyz, p, q);
+      if (!usedAt(q, d) || isDuplicateInRow(p, j))
+        continue;
+      const bool reverse = !listsUsed(q, p, d);
       put[p * k + j] = reverse ? 3 : 1;
-#pragma omp atomic
-      ++count[p];
       if (reverse) {
 #pragma omp atomic
-        ++count[q];
+        ++reverse_count[q];
       }
     }
   }
+  auto ownCount = [&](std::size_t p) {
+    std::uint32_t c = 0;
+    for (std::size_t j = 0; j < k; ++j)
+      c += put[p * k + j] != 0;
+    return c;
+  };
   for (std::size_t v = 0; v < n; ++v)
-    g.offsets[v + 1] += g.offsets[v];
+    g.offsets[v + 1] += g.offsets[v] + ownCount(v);
   g.targets.resize(g.offsets[n]);
-  {
-    std::vector<std::uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
+  // fill[v]: where v's next reverse entry goes.
+  std::vector<std::uint32_t> fill(n);
 #pragma omp parallel for num_threads(num_threads) schedule(static)
-    for (std::ptrdiff_t r = 0; r < rows; ++r) {
-      const auto p = static_cast<std::size_t>(r);
-      for (std::size_t j = 0; j < k; ++j) {
-        if (!put[p * k + j])
-          continue;
-        const std::uint32_t q = knn[p * k + j];
+  for (std::ptrdiff_t r = 0; r < rows; ++r)
+    fill[r] = g.offsets[r] + ownCount(static_cast<std::size_t>(r));
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto p = static_cast<std::size_t>(r);
+    std::uint32_t own = g.offsets[p];
+    for (std::size_t j = 0; j < k; ++j) {
+      if (!put[p * k + j])
+        continue;
+      const std::uint32_t q = knn[p * k + j];
+      g.targets[own++] = q;
+      if (put[p * k + j] & 2) {
         std::uint32_t at;
 #pragma omp atomic capture
-        at = fill[p]++;
-        g.targets[at] = q;
-        if (put[p * k + j] & 2) {
-#pragma omp atomic capture
-          at = fill[q]++;
-          g.targets[at] = static_cast<std::uint32_t>(p);
-        }
+        at = fill[q]++;
+        g.targets[at] = static_cast<std::uint32_t>(p);
       }
     }
   }
+  fill = std::vector<std::uint32_t>();
   put = std::vector<std::uint8_t>();
   g.lengths.resize(g.targets.size());
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto v = static_cast<std::size_t>(r);
-    std::sort(g.targets.begin() + g.offsets[v], g.targets.begin() + g.offsets[v + 1]);
+    // Rows are short (k and a few more): an insertion sort in place, without the library
+    // sort's block moves; long rows (a hub) go to std::sort. Targets in a row are distinct.
+    std::uint32_t* row = g.targets.data() + g.offsets[v];
+    const std::uint32_t degree = g.offsets[v + 1] - g.offsets[v];
+    if (degree > 32) {
+      std::sort(row, row + degree);
+    } else {
+      for (std::uint32_t i = 1; i < degree; ++i) {
+        const std::uint32_t t = row[i];
+        std::uint32_t j = i;
+        for (; j > 0 && row[j - 1] > t; --j)
+          row[j] = row[j - 1];
+        row[j] = t;
+      }
+    }
     for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
       g.lengths[e] = distance(xyz, v, g.targets[e]);
   }

@@ -48,11 +48,12 @@ Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times
   report("Snod", 1.0);
   times.supernodes = clock.lap();
   report("LRef", 0.0);
-  a.radii = pointRadii(a.graph, a.centrality.f);
+  a.radii = pointRadii(a.graph, a.centrality.f, params.num_threads);
   a.supernodes =
       refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
-  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label,
+                                 params.num_threads);
   report("LRef", 1.0);
   times.refinement = clock.lap();
   return a;

@@ -1,18 +1,24 @@
 // Sec. 4.3: feature height (2), area and radius (3), width (4), and the local refinement that
 // merges insignificant supernodes.
 #include <pcl_ncut_seg/core/refinement.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <queue>
 
 namespace pcl_ncut_seg {
 
-std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f) {
+std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f,
+                              unsigned num_threads) {
   const std::size_t n = graph.numVertices();
   std::vector<float> r(n, 0.0f);
-  for (std::uint32_t p = 0; p < n; ++p) {
+  // Each point's mean is its own: the same for any number of threads.
+#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
+  for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(n); ++pi) {
+    const auto p = static_cast<std::uint32_t>(pi);
     const std::uint32_t b = graph.offsets[p], e = graph.offsets[p + 1];
     if (b == e)
       continue;
@@ -26,6 +32,15 @@ std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+
+/// A key that orders finite floats by descending value as unsigned integers (-0 counts as 0).
+std::uint32_t descendingKey(float value) {
+  const float v = value == 0.0f ? 0.0f : value;
+  std::uint32_t bits;
+  std::memcpy(&bits, &v, sizeof bits);
+  bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
+  return ~bits;
+}
 
 float widthOf(double area, double height, double max_height) {
   const double floor = 1e-6 * max_height > 0 ? 1e-6 * max_height : 1e-30;
@@ -190,6 +205,8 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   // Steps 1 and 2 repeat until nothing merges: a merge moves children and grows supernodes,
   // which can make another supernode eligible.
   std::vector<std::uint32_t> by_f;
+  std::vector<std::uint64_t> sort_keys; // merge-up: by_f's sort keys
+  std::vector<std::uint32_t> members;    // merge-up: the points of s
   std::vector<std::uint32_t> slot(n, kNone); // merge-up: position of a point in by_f
   std::vector<std::uint32_t> kid_index;      // merge-up: position of a supernode in kids
   std::vector<std::uint32_t> edge_kid;       // merge-up: per edge of a point, see below
@@ -205,11 +222,20 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
           continue;
         merged = changed = true;
         const std::vector<std::uint32_t> kids = w.children[s];
-        by_f = w.points[s];
-        std::sort(by_f.begin(), by_f.end(), [&](std::uint32_t a, std::uint32_t b) {
-          return f[a] > f[b] || (f[a] == f[b] && a < b);
-        });
-        w.points[s].clear();
+        // Descending f, ties by ascending index: sorted as one 64-bit key per point (the
+        // order of floats as numbers in the high half, the index in the low), so that the
+        // sort does not read f at random.
+        sort_keys.resize(w.points[s].size());
+        for (std::size_t i = 0; i < sort_keys.size(); ++i) {
+          const std::uint32_t p = w.points[s][i];
+          sort_keys[i] = (std::uint64_t(descendingKey(f[p])) << 32) | p;
+        }
+        std::sort(sort_keys.begin(), sort_keys.end());
+        by_f.resize(sort_keys.size());
+        for (std::size_t i = 0; i < sort_keys.size(); ++i)
+          by_f[i] = static_cast<std::uint32_t>(sort_keys[i]);
+        members.clear();
+        members.swap(w.points[s]); // s's points in their own order, which follows memory
         w.area[s] = 0.0;
         // Passes over the points in by_f order, each point joining the child most of its
         // neighbours belong to, until a pass changes nothing. Simulated by events: a point is
@@ -235,11 +261,13 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
           }
           return false;
         };
+        // Read in s's own order (by_f jumps around memory), then queued in by_f order.
+        for (std::uint32_t p : members)
+          if (touchesChild(p))
+            state[slot[p]] = 1;
         for (std::uint32_t i = 0; i < count; ++i)
-          if (touchesChild(by_f[i])) {
-            state[i] = 1;
+          if (state[i] == 1)
             turns.push(i); // pass 0
-          }
         while (!turns.empty()) {
           const std::uint64_t turn = turns.top();
           turns.pop();

@@ -49,16 +49,22 @@ void BucketDijkstra::run(std::uint32_t source, float* dist, const float* bound,
                          std::vector<std::uint32_t>* touched) {
   // One loop per combination, so that the full searches of the centrality run the leanest.
   if (bound)
-    touched ? runImpl<true, true>(source, dist, bound, touched)
-            : runImpl<true, false>(source, dist, bound, touched);
+    touched ? runImpl<Bound::PerVertex, true>(source, dist, bound, 0.0f, touched)
+            : runImpl<Bound::PerVertex, false>(source, dist, bound, 0.0f, touched);
   else
-    touched ? runImpl<false, true>(source, dist, bound, touched)
-            : runImpl<false, false>(source, dist, bound, touched);
+    touched ? runImpl<Bound::None, true>(source, dist, bound, 0.0f, touched)
+            : runImpl<Bound::None, false>(source, dist, bound, 0.0f, touched);
 }
 
-template <bool kBounded, bool kRecord>
+void BucketDijkstra::runWithin(std::uint32_t source, float* dist, float bound,
+                               std::vector<std::uint32_t>* touched) {
+  touched ? runImpl<Bound::Uniform, true>(source, dist, nullptr, bound, touched)
+          : runImpl<Bound::Uniform, false>(source, dist, nullptr, bound, touched);
+}
+
+template <BucketDijkstra::Bound kBound, bool kRecord>
 void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bound,
-                             std::vector<std::uint32_t>* touched) {
+                             float uniform_bound, std::vector<std::uint32_t>* touched) {
   // Absolute bucket numbers fit 32 bits for any graph whose diameter is < 2^32 widths.
   const double inv_width = inv_width_;
   const std::size_t mask = mask_;
@@ -108,7 +114,9 @@ void BucketDijkstra::runImpl(std::uint32_t source, float* dist, const float* bou
       if (!isPending(v) || bucketOf(dv) != current)
         continue;
       clearPending(v);
-      if (kBounded && dv >= bound[v])
+      if (kBound == Bound::PerVertex && dv >= bound[v])
+        continue;
+      if (kBound == Bound::Uniform && dv >= uniform_bound)
         continue;
       // Relax the row without a branch per edge (whether an edge improves its target is
       // unpredictable), noting the improved targets; then queue those.

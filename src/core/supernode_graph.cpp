@@ -1,5 +1,6 @@
 // Sec. 5.1: the graph of representative and member vertices, weights (7) and (9), conn (8).
 #include <pcl_ncut_seg/core/supernode_graph.h>
+#include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +9,8 @@
 namespace pcl_ncut_seg {
 
 Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<float>& f,
-                                   const std::vector<std::uint32_t>& label) {
+                                   const std::vector<std::uint32_t>& label,
+                                   unsigned num_threads) {
   const std::size_t n = graph.numVertices();
   std::uint32_t l = 0;
   for (std::uint32_t s : label)
@@ -22,30 +24,54 @@ Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<floa
   for (std::uint32_t p = 0; p < n; ++p)
     members[fill[label[p]]++] = p;
 
-  Connectivity conn;
-  std::vector<double> row(l, 0.0);
-  std::vector<std::uint32_t> touched;
-  for (std::uint32_t i = 0; i < l; ++i) {
-    touched.clear();
-    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
-      const std::uint32_t p = members[k];
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        const std::uint32_t j = label[q];
-        if (j < i)
-          continue; // counted from j's side: conn is symmetric on a symmetric graph
-        if (row[j] == 0.0)
-          touched.push_back(j);
-        // eq. (8) with the norm of eq. (3); +tiny keeps zero-length edges recorded
-        row[j] += featureDistance(f[p] - f[q], graph.lengths[e]) + 1e-300;
+  // The supernodes' rows are independent sums (each in a fixed order): in parallel, then
+  // entered in supernode order, the same for any number of threads.
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> found(l);
+#pragma omp parallel num_threads(usableThreads(num_threads))
+  {
+    std::vector<double> row(l, 0.0);
+    std::vector<std::uint32_t> touched;
+#pragma omp for schedule(dynamic, 1)
+    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(l); ++si) {
+      const auto i = static_cast<std::uint32_t>(si);
+      touched.clear();
+      // Most edges stay inside i: their sum is kept in a register (row[i] in memory would make
+      // every addition wait for the previous one's store). Each sum adds in the same order.
+      double self = 0.0;
+      for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+        const std::uint32_t p = members[k];
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          const std::uint32_t j = label[q];
+          if (j < i)
+            continue; // counted from j's side: conn is symmetric on a symmetric graph
+          // eq. (8) with the norm of eq. (3); +tiny keeps zero-length edges recorded
+          const double d = featureDistance(f[p] - f[q], graph.lengths[e]) + 1e-300;
+          if (j == i) {
+            self += d;
+            continue;
+          }
+          if (row[j] == 0.0)
+            touched.push_back(j);
+          row[j] += d;
+        }
+      }
+      if (self != 0.0) {
+        touched.push_back(i);
+        row[i] = self;
+      }
+      std::sort(touched.begin(), touched.end());
+      auto& out = found[i];
+      for (std::uint32_t j : touched) {
+        out.emplace_back(j, row[j]);
+        row[j] = 0.0;
       }
     }
-    std::sort(touched.begin(), touched.end());
-    for (std::uint32_t j : touched) {
-      conn[{i, j}] = row[j];
-      row[j] = 0.0;
-    }
   }
+  Connectivity conn;
+  for (std::uint32_t i = 0; i < l; ++i)
+    for (const auto& [j, value] : found[i])
+      conn.emplace_hint(conn.end(), std::make_pair(i, j), value);
   return conn;
 }
 

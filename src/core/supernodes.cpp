@@ -1,7 +1,8 @@
 // Sec. 4.2: supernodes from the discrete gradient flow, created anew at saddle points, with
 // feature-crossing edges removed by the fraction rule (b).
-#include <pcl_ncut_seg/core/supernodes.h>
+#include <pcl_ncut_seg/core/prefetch.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
+#include <pcl_ncut_seg/core/supernodes.h>
 
 #include <algorithm>
 #include <cstring>
@@ -48,9 +49,10 @@ Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   sn.label.assign(n, kNone);
   // Descending f, ties by index: a deterministic order for equal values.
   const std::vector<std::uint32_t> order = descendingOrder(f);
-  std::vector<std::uint32_t> rank(n);
-  for (std::uint32_t i = 0; i < n; ++i)
-    rank[order[i]] = i;
+  // One bit per vertex: processed (before p in that order, so in M(p)). The bits stay in the
+  // processor's cache, where ranks would be another array read at random.
+  std::vector<std::uint64_t> processed((n + 63) / 64, 0);
+  auto isProcessed = [&processed](std::uint32_t v) { return (processed[v >> 6] >> (v & 63)) & 1u; };
 
   // A merged supernode redirects to the one created at its saddle (step (d)).
   std::vector<std::uint32_t> redirect;
@@ -77,14 +79,32 @@ Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
 
   std::vector<std::pair<std::uint32_t, std::uint32_t>> counts; // (supernode, points in M(p))
   std::vector<std::uint32_t> kept;
-  for (std::uint32_t p : order) {
+  // The order jumps around the graph: fetch the rows (and, twice as far ahead, the offsets)
+  // of the vertices a few places ahead, as the searches do (core/shortest_paths.h).
+  constexpr std::size_t kAhead = 8;
+  const std::uint32_t last_edge =
+      graph.targets.empty() ? 0u : static_cast<std::uint32_t>(graph.targets.size() - 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t p = order[i];
+    if (i + 2 * kAhead < n)
+      prefetch(&graph.offsets[order[i + 2 * kAhead]]);
+    if (i + kAhead < n) {
+      const std::uint32_t a = order[i + kAhead];
+      const std::uint32_t row = graph.offsets[a];
+      prefetch(&graph.targets[row]);
+      prefetch(&graph.targets[std::min(row + 15, last_edge)]);
+      prefetch(&graph.lengths[row]);
+      prefetch(&sn.label[a]);
+      prefetch(&f[a]);
+    }
+    processed[p >> 6] |= std::uint64_t(1) << (p & 63);
     counts.clear();
     const std::uint32_t begin = graph.offsets[p], end = graph.offsets[p + 1];
     std::uint32_t steepest = kNone; // the supernode of argmax_{q in M(p)} z(p, q)
     float best_z = -std::numeric_limits<float>::infinity();
     for (std::uint32_t e = begin; e < end; ++e) {
       const std::uint32_t q = graph.targets[e];
-      if (rank[q] > rank[p])
+      if (q == p || !isProcessed(q))
         continue; // not processed: not in M(p)
       const std::uint32_t s = find(sn.label[q]);
       auto it =

@@ -17,7 +17,8 @@ inline float featureDistance(float df, float d) {
 }
 
 /** \brief r(p) of Sec. 4.3: mean of ||p - q||_2 (eq. 3) over the neighbours N(p). */
-std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f);
+std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f,
+                              unsigned num_threads = 1);
 
 /** \brief Per supernode: feature height (eq. 2), area and width (eq. 4). */
 struct FeatureStats {

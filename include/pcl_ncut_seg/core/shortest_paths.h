@@ -38,9 +38,15 @@ public:
   void run(std::uint32_t source, float* dist, const float* bound = nullptr,
            std::vector<std::uint32_t>* touched = nullptr);
 
+  /** \brief As run() with the same bound for every vertex (a ball of that radius): no array
+   * of n bounds to read. */
+  void runWithin(std::uint32_t source, float* dist, float bound,
+                 std::vector<std::uint32_t>* touched = nullptr);
+
 private:
-  template <bool kBounded, bool kRecord>
-  void runImpl(std::uint32_t source, float* dist, const float* bound,
+  enum class Bound { None, PerVertex, Uniform };
+  template <Bound kBound, bool kRecord>
+  void runImpl(std::uint32_t source, float* dist, const float* bound, float uniform_bound,
                std::vector<std::uint32_t>* touched);
 
   const CsrGraph& graph_;

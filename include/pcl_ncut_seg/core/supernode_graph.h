@@ -19,7 +19,8 @@ namespace pcl_ncut_seg {
 using Connectivity = std::map<std::pair<std::uint32_t, std::uint32_t>, double>;
 
 Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<float>& f,
-                                   const std::vector<std::uint32_t>& label);
+                                   const std::vector<std::uint32_t>& label,
+                                   unsigned num_threads = 1);
 
 /** \brief Weighted undirected graph over 2l vertices: r_i = i, m_i = l + i. */
 struct WeightedGraph {

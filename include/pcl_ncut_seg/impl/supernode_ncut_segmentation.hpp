@@ -453,7 +453,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     if (pcl::isXYZFinite((*input_)[idx]))
       valid.push_back(static_cast<int>(idx));
   }
-  std::sort(valid.begin(), valid.end());
+  if (!std::is_sorted(valid.begin(), valid.end())) // the usual indices are sorted already
+    std::sort(valid.begin(), valid.end());
   const std::size_t before = valid.size();
   valid.erase(std::unique(valid.begin(), valid.end()), valid.end());
   if (valid.size() < before)
@@ -487,7 +488,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     std::vector<float> reordered_raw(3 * order.point.size());
     for (std::size_t v = 0; v < order.point.size(); ++v) {
       reordered[v] = valid[order.point[v]];
-      std::copy_n(&raw[3 * std::size_t(order.point[v])], 3, &reordered_raw[3 * v]);
+      for (std::size_t d = 0; d < 3; ++d) // (no library call per point)
+        reordered_raw[3 * v + d] = raw[3 * std::size_t(order.point[v]) + d];
     }
     for (const auto& c : order.copies)
       duplicates_.emplace_back(valid[c.first], c.second);
@@ -630,7 +632,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
       if (splits > 0) {
         a.stats = pcl_ncut_seg::featureStats(a.supernodes, a.centrality.f, a.radii);
         a.conn =
-            pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
+            pcl_ncut_seg::supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label,
+                                                num_threads_);
       }
       times_.refinement +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - crease_start).count();
