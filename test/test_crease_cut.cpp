@@ -6,6 +6,7 @@
 #include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "support/graphs.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -62,29 +63,8 @@ SlantedFold slantedFold(int nx, int ny) {
             adj[static_cast<std::size_t>(j * nx + i)].push_back(
                 static_cast<std::uint32_t>(b * nx + a));
         }
-  s.graph.offsets.push_back(0);
-  for (std::uint32_t v = 0; v < m; ++v) {
-    std::sort(adj[v].begin(), adj[v].end());
-    for (std::uint32_t w : adj[v]) {
-      s.graph.targets.push_back(w);
-      float d2 = 0;
-      for (int k = 0; k < 3; ++k)
-        d2 += (s.xyz[3 * v + k] - s.xyz[3 * w + k]) * (s.xyz[3 * v + k] - s.xyz[3 * w + k]);
-      s.graph.lengths.push_back(std::sqrt(d2));
-    }
-    s.graph.offsets.push_back(static_cast<std::uint32_t>(s.graph.targets.size()));
-  }
+  s.graph = test::graphFromAdjacency(std::move(adj), s.xyz);
   return s;
-}
-
-Supernodes oneSupernode(std::size_t n) {
-  Supernodes sn;
-  sn.label.assign(n, 0);
-  sn.origin = {0};
-  sn.at_saddle = {false};
-  sn.parent = {kNone};
-  sn.children = {{}};
-  return sn;
 }
 
 /// The share of points on the wrong side of the crease: each supernode counted as the side
@@ -103,7 +83,7 @@ double wrongSideShare(const Supernodes& sn, const std::vector<int>& side) {
 
 TEST(CreaseCut, FollowsACreaseThatSlantsAcrossTheLevelSets) {
   const SlantedFold s = slantedFold(61, 21);
-  const Supernodes in = oneSupernode(s.f.size());
+  const Supernodes in = test::oneSupernode(s.f.size());
   CreaseSplitParams params;
   params.area_fraction = 0.05f;
   // Level cuts alone: the most concave level cut crosses the crease in a few rows only. At a

@@ -5,6 +5,7 @@
 #include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "support/graphs.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -84,36 +85,15 @@ Strip foldedStrip(int n) {
       link(2 * i + 1, 2 * i + 3);
     }
   }
-  s.graph.offsets.push_back(0);
-  for (std::uint32_t v = 0; v < m; ++v) {
-    std::sort(adj[v].begin(), adj[v].end());
-    for (std::uint32_t w : adj[v]) {
-      s.graph.targets.push_back(w);
-      float d = 0;
-      for (int k = 0; k < 3; ++k)
-        d += (s.xyz[3 * v + k] - s.xyz[3 * w + k]) * (s.xyz[3 * v + k] - s.xyz[3 * w + k]);
-      s.graph.lengths.push_back(std::sqrt(d));
-    }
-    s.graph.offsets.push_back(static_cast<std::uint32_t>(s.graph.targets.size()));
-  }
+  s.graph = test::graphFromAdjacency(std::move(adj), s.xyz);
   return s;
-}
-
-Supernodes oneSupernode(std::size_t n) {
-  Supernodes sn;
-  sn.label.assign(n, 0);
-  sn.origin = {0};
-  sn.at_saddle = {false};
-  sn.parent = {kNone};
-  sn.children = {{}};
-  return sn;
 }
 
 } // namespace
 
 TEST(CreaseSplit, SplitsASupernodeAtItsConcaveFold) {
   const Strip s = foldedStrip(41);
-  const Supernodes in = oneSupernode(s.f.size());
+  const Supernodes in = test::oneSupernode(s.f.size());
   CreaseSplitParams params;
   params.min_concavity = 1.0;
   params.area_fraction = 0.1f;

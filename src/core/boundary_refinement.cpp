@@ -239,27 +239,18 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
         ++net.first[sink + 1];
       }
     }
-    for (std::uint32_t v = 0; v < m + 2; ++v)
-      net.first[v + 1] += net.first[v];
-    const std::uint32_t arcs = net.first[m + 2];
-    net.arc.resize(arcs);
-    std::vector<std::uint32_t> fill(net.first.begin(), net.first.end() - 1);
-    auto addPair = [&](std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
-      const std::uint32_t a = fill[u]++, b = fill[v]++;
-      net.arc[a] = {cap_uv, v, b};
-      net.arc[b] = {cap_vu, u, a};
-    };
+    net.allocateArcs();
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = band[i];
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         if (local[q] >= 0 && q > p)
-          addPair(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
+          net.addPair(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
       }
       if (to_source[i] > 0.0)
-        addPair(source, i, to_source[i], 0.0);
+        net.addPair(source, i, to_source[i], 0.0);
       if (to_sink[i] > 0.0)
-        addPair(i, sink, to_sink[i], 0.0);
+        net.addPair(i, sink, to_sink[i], 0.0);
     }
     std::vector<double>().swap(to_source);
     std::vector<double>().swap(to_sink);

@@ -189,28 +189,20 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         ++net.first[sink + 1];
       }
     }
-    for (std::uint32_t v = 0; v < m + 2; ++v)
-      net.first[v + 1] += net.first[v];
-    net.arc.resize(net.first[m + 2]);
-    std::vector<std::uint32_t> fill(net.first.begin(), net.first.end() - 1);
-    auto addPair = [&](std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
-      const std::uint32_t a = fill[u]++, b = fill[v]++;
-      net.arc[a] = {cap_uv, v, b};
-      net.arc[b] = {cap_vu, u, a};
-    };
+    net.allocateArcs();
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = pts[top_end + i];
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         if (q > p && sn.label[q] == s && local[q] >= 0) {
           const double c = capacity(p, e);
-          addPair(i, static_cast<std::uint32_t>(local[q]), c, c);
+          net.addPair(i, static_cast<std::uint32_t>(local[q]), c, c);
         }
       }
       if (to_source[i] > 0.0)
-        addPair(source, i, to_source[i], 0.0);
+        net.addPair(source, i, to_source[i], 0.0);
       if (to_sink[i] > 0.0)
-        addPair(i, sink, to_sink[i], 0.0);
+        net.addPair(i, sink, to_sink[i], 0.0);
     }
     const std::vector<char> source_side = net.sourceSide(source, sink);
     auto onTop = [&](std::uint32_t q) {

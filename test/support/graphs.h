@@ -2,6 +2,7 @@
 #pragma once
 
 #include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/supernodes.h>
 
 #include <algorithm>
 #include <cmath>
@@ -31,6 +32,37 @@ inline CsrGraph graphFromEdges(std::size_t n,
     g.offsets.push_back(static_cast<std::uint32_t>(g.targets.size()));
   }
   return g;
+}
+
+/// A graph from each vertex's neighbours (both directions listed), each edge as long as the
+/// distance between its points (xyz: 3 floats per vertex).
+inline CsrGraph graphFromAdjacency(std::vector<std::vector<std::uint32_t>> adj,
+                                   const std::vector<float>& xyz) {
+  CsrGraph g;
+  g.offsets.push_back(0);
+  for (std::uint32_t v = 0; v < adj.size(); ++v) {
+    std::sort(adj[v].begin(), adj[v].end());
+    for (std::uint32_t w : adj[v]) {
+      g.targets.push_back(w);
+      float d = 0;
+      for (int k = 0; k < 3; ++k)
+        d += (xyz[3 * v + k] - xyz[3 * w + k]) * (xyz[3 * v + k] - xyz[3 * w + k]);
+      g.lengths.push_back(std::sqrt(d));
+    }
+    g.offsets.push_back(static_cast<std::uint32_t>(g.targets.size()));
+  }
+  return g;
+}
+
+/// Every one of n points in one supernode (a local maximum at point 0).
+inline Supernodes oneSupernode(std::size_t n) {
+  Supernodes sn;
+  sn.label.assign(n, 0);
+  sn.origin = {0};
+  sn.at_saddle = {false};
+  sn.parent = {kNone};
+  sn.children = {{}};
+  return sn;
 }
 
 /// n random points in the unit cube and their brute-force k nearest neighbours.

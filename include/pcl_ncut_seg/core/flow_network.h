@@ -22,8 +22,25 @@ struct FlowNetwork {
   };
   std::vector<std::uint32_t> first; ///< size nodes + 1
   std::vector<Arc> arc;
+  std::vector<std::uint32_t> next_arc; ///< per node, where addPair() puts its next arc
 
   std::uint32_t nodes() const { return static_cast<std::uint32_t>(first.size() - 1); }
+
+  /// Building: first[v + 1] holds node v's number of arcs (first[0] = 0); this turns the counts
+  /// into offsets and makes room for the arcs, which addPair() then fills in.
+  void allocateArcs() {
+    for (std::size_t v = 0; v + 1 < first.size(); ++v)
+      first[v + 1] += first[v];
+    arc.resize(first.back());
+    next_arc.assign(first.begin(), first.end() - 1);
+  }
+
+  /// The arcs u -> v and v -> u, each the other's reverse.
+  void addPair(std::uint32_t u, std::uint32_t v, double cap_uv, double cap_vu) {
+    const std::uint32_t a = next_arc[u]++, b = next_arc[v]++;
+    arc[a] = {cap_uv, v, b};
+    arc[b] = {cap_vu, u, a};
+  }
 
   /// The nodes that cannot reach t in the residual network after a maximum preflow from s.
   std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t) {
