@@ -217,8 +217,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
     // outside the band); points of other segments take no part.
     const std::uint32_t source = m, sink = m + 1;
     FlowNetwork net;
-    net.first.assign(m + 3, 0);
-    std::vector<double> to_source(m, 0.0), to_sink(m, 0.0);
+    net.reset(m);
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = band[i];
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -226,17 +225,9 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
         if (local[q] >= 0)
           ++net.first[i + 1];
         else if (segment[q] == a_seg)
-          to_source[i] += capacity(e);
+          net.to_source[i] += capacity(e);
         else if (segment[q] == b_seg)
-          to_sink[i] += capacity(e);
-      }
-      if (to_source[i] > 0.0) {
-        ++net.first[i + 1];
-        ++net.first[source + 1];
-      }
-      if (to_sink[i] > 0.0) {
-        ++net.first[i + 1];
-        ++net.first[sink + 1];
+          net.to_sink[i] += capacity(e);
       }
     }
     net.allocateArcs();
@@ -247,13 +238,8 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
         if (local[q] >= 0 && q > p)
           net.addPair(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
       }
-      if (to_source[i] > 0.0)
-        net.addPair(source, i, to_source[i], 0.0);
-      if (to_sink[i] > 0.0)
-        net.addPair(i, sink, to_sink[i], 0.0);
+      net.addTerminalArcs(i);
     }
-    std::vector<double>().swap(to_source);
-    std::vector<double>().swap(to_sink);
     for (std::uint32_t p : band)
       local[p] = -1;
     const std::vector<char> source_side = net.sourceSide(source, sink);

@@ -165,8 +165,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
     // The network: the points between the seeds, the source (top seed) and the sink.
     const std::uint32_t source = m, sink = m + 1;
     FlowNetwork net;
-    net.first.assign(m + 3, 0);
-    std::vector<double> to_source(m, 0.0), to_sink(m, 0.0);
+    net.reset(m);
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = pts[top_end + i];
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -176,17 +175,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
         if (local[q] >= 0)
           ++net.first[i + 1];
         else if (local[q] == kTopSeed)
-          to_source[i] += capacity(p, e);
+          net.to_source[i] += capacity(p, e);
         else
-          to_sink[i] += capacity(p, e);
-      }
-      if (to_source[i] > 0.0) {
-        ++net.first[i + 1];
-        ++net.first[source + 1];
-      }
-      if (to_sink[i] > 0.0) {
-        ++net.first[i + 1];
-        ++net.first[sink + 1];
+          net.to_sink[i] += capacity(p, e);
       }
     }
     net.allocateArcs();
@@ -199,10 +190,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
           net.addPair(i, static_cast<std::uint32_t>(local[q]), c, c);
         }
       }
-      if (to_source[i] > 0.0)
-        net.addPair(source, i, to_source[i], 0.0);
-      if (to_sink[i] > 0.0)
-        net.addPair(i, sink, to_sink[i], 0.0);
+      net.addTerminalArcs(i);
     }
     const std::vector<char> source_side = net.sourceSide(source, sink);
     auto onTop = [&](std::uint32_t q) {

@@ -22,17 +22,48 @@ struct FlowNetwork {
   };
   std::vector<std::uint32_t> first; ///< size nodes + 1
   std::vector<Arc> arc;
-  std::vector<std::uint32_t> next_arc; ///< per node, where addPair() puts its next arc
+  std::vector<std::uint32_t> next_arc;    ///< per node, where addPair() puts its next arc
+  std::vector<double> to_source, to_sink; ///< building: per inner node, its terminal capacities
 
   std::uint32_t nodes() const { return static_cast<std::uint32_t>(first.size() - 1); }
 
-  /// Building: first[v + 1] holds node v's number of arcs (first[0] = 0); this turns the counts
-  /// into offsets and makes room for the arcs, which addPair() then fills in.
+  /// Building a network of m inner nodes 0..m-1, the source m and the sink m + 1: count each
+  /// inner node's arcs to other inner nodes in first[i + 1] and add up its capacities to the
+  /// terminals in to_source[i] and to_sink[i]; then allocateArcs(), and per inner node its
+  /// addPair() calls and addTerminalArcs().
+  void reset(std::uint32_t m) {
+    first.assign(m + 3, 0);
+    to_source.assign(m, 0.0);
+    to_sink.assign(m, 0.0);
+  }
+
+  /// Adds the terminal arcs to the counts, turns the counts into offsets and makes room for the
+  /// arcs.
   void allocateArcs() {
+    const auto m = static_cast<std::uint32_t>(to_source.size());
+    for (std::uint32_t i = 0; i < m; ++i) {
+      if (to_source[i] > 0.0) {
+        ++first[i + 1];
+        ++first[m + 1];
+      }
+      if (to_sink[i] > 0.0) {
+        ++first[i + 1];
+        ++first[m + 2];
+      }
+    }
     for (std::size_t v = 0; v + 1 < first.size(); ++v)
       first[v + 1] += first[v];
     arc.resize(first.back());
     next_arc.assign(first.begin(), first.end() - 1);
+  }
+
+  /// Inner node i's arcs from the source and to the sink (those of positive capacity).
+  void addTerminalArcs(std::uint32_t i) {
+    const auto m = static_cast<std::uint32_t>(to_source.size());
+    if (to_source[i] > 0.0)
+      addPair(m, i, to_source[i], 0.0);
+    if (to_sink[i] > 0.0)
+      addPair(i, m + 1, to_sink[i], 0.0);
   }
 
   /// The arcs u -> v and v -> u, each the other's reverse.
@@ -44,6 +75,8 @@ struct FlowNetwork {
 
   /// The nodes that cannot reach t in the residual network after a maximum preflow from s.
   std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t) {
+    std::vector<double>().swap(to_source); // built: free before the search's own arrays
+    std::vector<double>().swap(to_sink);
     const std::uint32_t n = nodes();
     std::vector<std::uint32_t> height(n), cur(first.begin(), first.end() - 1);
     std::vector<double> excess(n, 0.0);
