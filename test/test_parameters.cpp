@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -19,12 +20,18 @@ using namespace pcl_ncut_seg;
 
 namespace {
 
+/// The next value after x towards y in single precision, so that it is a value of float
+/// fields as well as of double ones.
+double nextTowards(double x, double y) {
+  return static_cast<double>(std::nextafter(static_cast<float>(x), static_cast<float>(y)));
+}
+
 /// Values of a numeric row inside its range (its edges where they are in it).
 std::vector<double> inside(const ParameterInfo& r) {
   std::vector<double> v;
-  v.push_back(r.lo_open ? std::nextafter(r.lo, r.hi) : r.lo);
+  v.push_back(r.lo_open ? nextTowards(r.lo, r.hi) : r.lo);
   if (std::isfinite(r.hi))
-    v.push_back(r.hi_open ? std::nextafter(r.hi, r.lo) : r.hi);
+    v.push_back(r.hi_open ? nextTowards(r.hi, r.lo) : r.hi);
   else
     v.push_back(r.kind == ValueKind::Integer ? r.lo + 1000 : r.lo + 1e6);
   return v;
@@ -33,15 +40,12 @@ std::vector<double> inside(const ParameterInfo& r) {
 /// Values of a numeric row just past its range, and values no number range holds.
 std::vector<double> outside(const ParameterInfo& r) {
   const double inf = std::numeric_limits<double>::infinity();
+  const bool integer = r.kind == ValueKind::Integer;
   std::vector<double> v{std::numeric_limits<double>::quiet_NaN(), inf, -inf};
-  v.push_back(r.kind == ValueKind::Integer ? r.lo - 1
-              : r.lo_open                  ? r.lo
-                                           : std::nextafter(r.lo, -inf));
+  v.push_back(integer ? r.lo - 1 : r.lo_open ? r.lo : nextTowards(r.lo, -inf));
   if (std::isfinite(r.hi))
-    v.push_back(r.kind == ValueKind::Integer ? r.hi + 1
-                : r.hi_open                  ? r.hi
-                                             : std::nextafter(r.hi, inf));
-  if (r.kind == ValueKind::Integer)
+    v.push_back(integer ? r.hi + 1 : r.hi_open ? r.hi : nextTowards(r.hi, inf));
+  if (integer)
     v.push_back(r.lo + 0.5); // not a whole number
   return v;
 }
@@ -95,7 +99,11 @@ TEST(ParameterTable, EveryNumberAtTheEdgesOfItsRangeIsTaken) {
       std::string why;
       EXPECT_TRUE(r.set(p, text(v), &why)) << r.name << " " << text(v) << ": " << why;
       EXPECT_TRUE(validate(p, &why)) << r.name << " " << text(v) << ": " << why;
-      EXPECT_EQ(std::stod(r.get(p)), v) << r.name;
+      // Read back as the field's own precision prints it, and read again to the same value.
+      EXPECT_NEAR(std::strtod(r.get(p).c_str(), nullptr), v, 1e-6 * std::max(1.0, std::fabs(v)));
+      Parameters again;
+      EXPECT_TRUE(r.set(again, r.get(p), nullptr)) << r.name << " " << r.get(p);
+      EXPECT_EQ(r.get(again), r.get(p)) << r.name;
     }
   }
 }

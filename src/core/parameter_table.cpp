@@ -1,9 +1,9 @@
 #include <pcl_ncut_seg/parameter_table.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -11,24 +11,28 @@
 
 namespace pcl_ncut_seg {
 
-std::string formatNumber(double value) {
+namespace {
+/// The shortest "%g" text that reads back as value (by read), in plain notation where %g
+/// allows it at a larger precision (90, not 9e+01).
+template <typename Read> std::string shortest(double value, int max_precision, Read read) {
   char buf[64];
-  for (int precision = 1; precision <= 17; ++precision) {
+  const double magnitude = std::fabs(value);
+  const bool plain = magnitude >= 1e-4 && magnitude < 1e15;
+  for (int precision = 1; precision <= max_precision; ++precision) {
     std::snprintf(buf, sizeof buf, "%.*g", precision, value);
-    if (std::strtod(buf, nullptr) == value)
+    if (read(buf) && !(plain && std::strchr(buf, 'e')))
       break;
   }
   return buf;
 }
+} // namespace
+
+std::string formatNumber(double value) {
+  return shortest(value, 17, [value](const char* s) { return std::strtod(s, nullptr) == value; });
+}
 
 std::string formatNumber(float value) {
-  char buf[64];
-  for (int precision = 1; precision <= 9; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, static_cast<double>(value));
-    if (std::strtof(buf, nullptr) == value)
-      break;
-  }
-  return buf;
+  return shortest(value, 9, [value](const char* s) { return std::strtof(s, nullptr) == value; });
 }
 
 namespace {
@@ -75,9 +79,8 @@ std::optional<double> parseNumber(const std::string& text) {
   if (text.empty())
     return std::nullopt;
   char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (*end != '\0' || errno == ERANGE || !std::isfinite(v))
+  const double v = std::strtod(text.c_str(), &end); // (an underflow reads as a denormal)
+  if (*end != '\0' || !std::isfinite(v))
     return std::nullopt;
   return v;
 }
@@ -135,7 +138,7 @@ ParameterInfo number(ParameterInfo r, Range range, Access access, const char* of
         return true;
       }
     const std::optional<double> v = parseNumber(text);
-    if (!v || !valid(*v))
+    if (!v || !valid(*v) || !valid(static_cast<double>(static_cast<T>(*v))))
       return fail(why, r, "'" + text + "'");
     access(p) = static_cast<T>(*v);
     return true;
