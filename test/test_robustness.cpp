@@ -23,6 +23,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -414,24 +415,58 @@ TEST(Robustness, ScaledModelsSegmentTheSame) {
 }
 
 TEST(Robustness, ModelFarFromTheOrigin) {
-  // The hand moved 1e4 away from the origin. The library loses nothing beyond what float
-  // coordinates at 1e4 lost already (they are 2^-10 apart there): the moved cloud segments
-  // exactly as the same points moved back in double.
+  // The hand (2.2 units tall, mean point spacing 0.02) moved away from the origin: what float
+  // coordinates there keep, the segmentation must keep.
   const LabeledShape hand = makeHand(3000, 9);
   const auto six = [](Seg& s) { s.setNumberOfSegments(6); };
+  const std::vector<int> origin = segmentsToLabels(segment(hand.cloud, six), hand.cloud->size());
+  const std::vector<int> origin_t = segmentsToLabels(segment(hand.cloud), hand.cloud->size());
+
+  // Moved by 1 and 10, the coordinates are rounded by at most 4.8e-7 (2^-21 below 16), 2.4e-5
+  // point spacings: the same segmentation, label for label. (Measured on the hands of seeds
+  // 1-20: the same for all at 10, but not for 1 of them at 100, rounded by 3.8e-6, nor for 4
+  // at 300: a change of a few 1e-4 point spacings can pick another of two nearly equal cuts.)
+  for (const double offset : {1.0, 10.0}) {
+    const Cloud::Ptr c = transformed(*hand.cloud, 1.0, offset);
+    EXPECT_EQ(expectPartition(segment(c, six), *c), origin) << offset;
+    EXPECT_EQ(expectPartition(segment(c), *c), origin_t) << offset;
+  }
+
+  // Moved by 1e4, where floats are 2^-10 apart, the points move by up to 4.9e-4. The library
+  // loses nothing beyond that rounding: the moved cloud segments exactly as the same points
+  // moved back in double.
   const Cloud::Ptr moved = transformed(*hand.cloud, 1.0, 1e4);
   const Cloud::Ptr back = transformed(*moved, 1.0, -1e4); // exact: float values near 0
   const auto labels = expectPartition(segment(moved, six), *moved);
+  const auto labels_t = expectPartition(segment(moved), *moved);
   EXPECT_EQ(labels, segmentsToLabels(segment(back, six), back->size()));
-  EXPECT_EQ(expectPartition(segment(moved), *moved), segmentsToLabels(segment(back), back->size()));
-  // Against the unrounded original.
-  const double ri = randIndex(labels, segmentsToLabels(segment(hand.cloud, six), 3000));
-  std::printf("hand moved by 1e4: Rand index vs original %.4f (6 segments)\n", ri);
-  if (ri < 0.99)
-    GTEST_SKIP() << "known limitation (README): rounding the input to floats at 1e4 moves "
-                    "points by up to 4.9e-4, and a random jitter of 5e-4 changes the "
-                    "segmentation as much (Rand index 0.93-0.98 over five seeds); Rand index "
-                 << ri << " < 0.99";
+  EXPECT_EQ(labels_t, segmentsToLabels(segment(back), back->size()));
+  // The rounding is a perturbation of the size of a random jitter of 5e-4, and on generated
+  // hands changes the segmentation about as much as such a jitter: Rand index 0.944 against
+  // the unmoved hand's, where the goal is 0.99 (README, "Known limitations";
+  // pcl_ncut_seg_bench_perturbation prints it, and the jitter). What it keeps is what matters
+  // on a hand: its palm, four fingers and thumb each keep a segment of their own holding most
+  // of their points (over half; measured at least 0.83 moved, 0.90 unmoved), with six segments
+  // asked for and with the threshold.
+  std::printf("hand moved by 1e4: Rand index vs unmoved %.4f (6 segments), %.4f (threshold)\n",
+              randIndex(labels, origin), randIndex(labels_t, origin_t));
+  const std::pair<const char*, const std::vector<int>*> runs[] = {{"unmoved, 6 segments", &origin},
+                                                                  {"unmoved, threshold", &origin_t},
+                                                                  {"moved, 6 segments", &labels},
+                                                                  {"moved, threshold", &labels_t}};
+  for (const auto& [what, run] : runs) {
+    const std::vector<MainSegment> main = mainSegments(*run, hand.labels, hand.num_parts);
+    std::set<int> own;
+    std::printf("  %s: share of each part in its main segment", what);
+    for (int part = 0; part < hand.num_parts; ++part) {
+      std::printf(" %.3f", main[part].share);
+      EXPECT_GT(main[part].share, 0.5) << what << ", part " << part;
+      own.insert(main[part].segment);
+    }
+    std::printf("\n");
+    EXPECT_EQ(own.size(), static_cast<std::size_t>(hand.num_parts))
+        << what << ": two parts share their main segment";
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
