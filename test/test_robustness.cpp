@@ -109,15 +109,6 @@ Segments segment(const Cloud::Ptr& cloud, const std::function<void(Seg&)>& setup
   return out;
 }
 
-Cloud::Ptr randomCube(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  Cloud::Ptr c(new Cloud);
-  for (std::size_t i = 0; i < n; ++i)
-    c->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
-  return c;
-}
-
 Cloud::Ptr transformed(const Cloud& in, double scale, double offset) {
   Cloud::Ptr out(new Cloud);
   for (const auto& p : in)
