@@ -59,33 +59,14 @@ std::vector<int> segment(const Cloud::Ptr& cloud, bool cad, int num_segments,
 
 /** \brief CAD mode on the cases of test_cad.cpp; returns how many miss the goal. */
 int cadParts(int seeds) {
-  struct Case {
-    const char* shape;
-    std::size_t n;
-    double noise;
-  };
-  const Case cases[] = {{"cube", 6000, 0.0},
-                        {"cube", 6000, 0.005},
-                        {"cube", 6000, 0.01},
-                        {"triangular_prism", 6000, 0.0},
-                        {"triangular_prism", 6000, 0.005},
-                        {"triangular_prism", 6000, 0.01},
-                        {"hexagonal_prism", 8000, 0.0},
-                        {"hexagonal_prism", 8000, 0.005},
-                        {"hexagonal_prism", 6000, 0.01},
-                        {"l_block", 8000, 0.0},
-                        {"l_block", 8000, 0.005},
-                        {"l_block", 6000, 0.01},
-                        {"cylinder", 6000, 0.0},
-                        {"cylinder", 6000, 0.005},
-                        {"cylinder", 6000, 0.01}};
   std::printf("CAD mode, generated parts (goal: Rand index >= %.2f, every face >= %.0f%% in a "
               "segment of its own)\n",
               kCadRandGoal, 100 * kCadShareGoal);
   std::printf("%-17s %6s %6s %4s %5s %4s %10s %10s  %s\n", "part", "n", "noise", "seed", "faces",
               "t", "Rand index", "min share", "");
   int below = 0;
-  for (const Case& c : cases)
+  const auto& cases = pcl_ncut_seg::test::cadCases();
+  for (const auto& c : cases)
     for (int seed = 1; seed <= seeds; ++seed) {
       const LabeledShape shape = pcl_ncut_seg::test::makeCadShape(c.shape, c.n, seed, c.noise);
       std::size_t t = 0;
@@ -101,12 +82,11 @@ int cadParts(int seeds) {
       const bool shared = own.size() < main.size();
       const bool short_of_goal = ri < kCadRandGoal || min_share < kCadShareGoal || shared;
       below += short_of_goal;
-      std::printf("%-17s %6zu %6.3f %4d %5d %4zu %10.4f %10.3f  %s%s\n", c.shape, c.n, c.noise,
-                  seed, shape.num_parts, t, ri, min_share, shared ? "faces share a segment " : "",
-                  short_of_goal ? "below the goal" : "");
+      std::printf("%-17s %6zu %6.3f %4d %5d %4zu %10.4f %10.3f  %s%s\n", c.shape.c_str(), c.n,
+                  c.noise, seed, shape.num_parts, t, ri, min_share,
+                  shared ? "faces share a segment " : "", short_of_goal ? "below the goal" : "");
     }
-  std::printf("%d of %d runs below the goal\n\n", below,
-              static_cast<int>(sizeof(cases) / sizeof(cases[0])) * seeds);
+  std::printf("%d of %d runs below the goal\n\n", below, static_cast<int>(cases.size()) * seeds);
   return below;
 }
 
