@@ -18,9 +18,9 @@
 
 #include "mesh_sampling.h"
 #include "support/metrics.h"
+#include "timing.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -35,14 +35,14 @@ using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 std::vector<int> segmentLabels(const Cloud::Ptr& cloud, int segments_wanted,
                                pcl_ncut_seg::CentralityMode mode, double* seconds) {
-  const auto start = std::chrono::steady_clock::now();
+  const double start = pcl_ncut_seg_bench::now();
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
   seg.setCentralityMode(mode);
   seg.setNumberOfSegments(segments_wanted);
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
-  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  *seconds = pcl_ncut_seg_bench::now() - start;
   return pcl_ncut_seg::test::segmentsToLabels(segments, cloud->size());
 }
 
