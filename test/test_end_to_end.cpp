@@ -6,6 +6,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/metrics.h"
+#include "support/partition.h"
 #include "support/shapes.h"
 
 #include <pcl/common/point_tests.h>
@@ -229,24 +230,6 @@ struct Segmentation {
   std::vector<int> labels; ///< segment per point, -1 for none
 };
 
-/** \brief Every finite point in exactly one segment, non-finite points in none, and no empty
- * segment. */
-void expectPartition(const Cloud& cloud, const std::vector<pcl::PointIndices>& segments) {
-  std::vector<int> count(cloud.size(), 0);
-  for (const auto& segment : segments) {
-    EXPECT_FALSE(segment.indices.empty()) << "empty segment";
-    for (const auto i : segment.indices) {
-      ASSERT_GE(i, 0);
-      ASSERT_LT(static_cast<std::size_t>(i), cloud.size());
-      ++count[i];
-    }
-  }
-  std::size_t wrong = 0;
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    wrong += count[i] != (pcl::isFinite(cloud[i]) ? 1 : 0);
-  EXPECT_EQ(wrong, 0u) << "points not in exactly one segment (finite) or in one (non-finite)";
-}
-
 /** \brief Segment with the default parameters, except the number of segments if > 0. */
 Segmentation segment(const Cloud::Ptr& cloud, int num_segments) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
@@ -255,8 +238,7 @@ Segmentation segment(const Cloud::Ptr& cloud, int num_segments) {
     seg.setNumberOfSegments(num_segments);
   Segmentation run;
   seg.extract(run.segments);
-  expectPartition(*cloud, run.segments);
-  run.labels = segmentsToLabels(run.segments, cloud->size());
+  run.labels = pcl_ncut_seg::test::expectPartition(run.segments, *cloud);
   return run;
 }
 

@@ -9,6 +9,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/graphs.h>
 #include <support/metrics.h>
+#include <support/partition.h>
 #include <support/shapes.h>
 
 #include <pcl/common/point_tests.h>
@@ -61,41 +62,6 @@ void expectErrorAndNothing(const Seg& seg, const Extracted& r, const std::string
   EXPECT_TRUE(seg.getColoredCloud()->empty());
   EXPECT_EQ(seg.getAnalysis(), nullptr);
   EXPECT_TRUE(seg.getAnalysedIndices().empty());
-}
-
-/** Segments partition the finite points selected by `selected` (all points when null): each
- * in exactly one segment, every other point in none; segments non-empty, sorted, ordered by
- * their smallest index. Returns the label of each point (-1 for none). */
-std::vector<int> expectPartition(const Segments& segments, const Cloud& cloud,
-                                 const pcl::Indices* selected = nullptr) {
-  std::vector<char> want(cloud.size(), selected ? 0 : 1);
-  if (selected)
-    for (int i : *selected)
-      want[i] = 1;
-  std::vector<int> label(cloud.size(), -1), count(cloud.size(), 0);
-  int previous_first = -1;
-  for (std::size_t s = 0; s < segments.size(); ++s) {
-    const auto& idx = segments[s].indices;
-    EXPECT_FALSE(idx.empty()) << "segment " << s << " is empty";
-    if (idx.empty())
-      continue;
-    EXPECT_TRUE(std::is_sorted(idx.begin(), idx.end()));
-    EXPECT_GT(idx.front(), previous_first) << "segments not ordered by smallest index";
-    previous_first = idx.front();
-    for (int i : idx) {
-      EXPECT_GE(i, 0);
-      EXPECT_LT(static_cast<std::size_t>(i), cloud.size());
-      if (i < 0 || static_cast<std::size_t>(i) >= cloud.size())
-        continue;
-      ++count[i];
-      label[i] = static_cast<int>(s);
-    }
-  }
-  std::size_t wrong = 0;
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    wrong += count[i] != ((want[i] && pcl::isXYZFinite(cloud[i])) ? 1 : 0);
-  EXPECT_EQ(wrong, 0u) << "points not in exactly one segment (or segmented but not wanted)";
-  return label;
 }
 
 /** Segment `cloud` with default parameters changed by `setup`; expects no error. */
