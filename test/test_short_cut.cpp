@@ -1,5 +1,5 @@
 /*
- * The short-cut stopping rule (core/short_cut.h, CutParams::neck_exponent,
+ * The short-cut stopping rule (core/short_cut.h, StoppingParams::neck_exponent,
  * SupernodeNCutSegmentation::setNeckExponent / setNeckBound).
  */
 #include <pcl_ncut_seg/core/normalized_cut.h>
