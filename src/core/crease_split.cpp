@@ -8,25 +8,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <deque>
 
 namespace pcl_ncut_seg {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-/// The vertices by descending f, ties by ascending index (as extractSupernodes()).
-std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
-  std::vector<std::uint32_t> key(f.size());
-  for (std::size_t i = 0; i < f.size(); ++i) {
-    const float v = f[i] == 0.0f ? 0.0f : f[i];
-    std::uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
-    key[i] = ~bits;
-  }
-  return stableOrderByKey(key);
-}
 } // namespace
 
 Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
@@ -152,9 +138,9 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
       return result;
     const auto m = static_cast<std::uint32_t>(bottom_begin - top_end);
     for (std::size_t i = 0; i < pts.size(); ++i)
-      local[pts[i]] = i < top_end                ? kTopSeed
-                      : i >= bottom_begin        ? kBottomSeed
-                                                 : static_cast<std::int32_t>(i - top_end);
+      local[pts[i]] = i < top_end         ? kTopSeed
+                      : i >= bottom_begin ? kBottomSeed
+                                          : static_cast<std::int32_t>(i - top_end);
     auto concave = [&](std::uint32_t p, std::uint32_t e) {
       return std::max(0.0, -bend(p, graph.targets[e], graph.lengths[e])) / typical;
     };

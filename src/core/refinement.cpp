@@ -1,11 +1,11 @@
 // Sec. 4.3: feature height (2), area and radius (3), width (4), and the local refinement that
 // merges insignificant supernodes.
+#include <pcl_ncut_seg/core/radix_sort.h>
 #include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <queue>
 
@@ -32,15 +32,6 @@ std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-/// A key that orders finite floats by descending value as unsigned integers (-0 counts as 0).
-std::uint32_t descendingKey(float value) {
-  const float v = value == 0.0f ? 0.0f : value;
-  std::uint32_t bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
-  return ~bits;
-}
 
 float widthOf(double area, double height, double max_height) {
   const double floor = 1e-6 * max_height > 0 ? 1e-6 * max_height : 1e-30;
@@ -205,8 +196,8 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   // Steps 1 and 2 repeat until nothing merges: a merge moves children and grows supernodes,
   // which can make another supernode eligible.
   std::vector<std::uint32_t> by_f;
-  std::vector<std::uint64_t> sort_keys; // merge-up: by_f's sort keys
-  std::vector<std::uint32_t> members;    // merge-up: the points of s
+  std::vector<std::uint64_t> sort_keys;      // merge-up: by_f's sort keys
+  std::vector<std::uint32_t> members;        // merge-up: the points of s
   std::vector<std::uint32_t> slot(n, kNone); // merge-up: position of a point in by_f
   std::vector<std::uint32_t> kid_index;      // merge-up: position of a supernode in kids
   std::vector<std::uint32_t> edge_kid;       // merge-up: per edge of a point, see below

@@ -5,27 +5,9 @@
 #include <pcl_ncut_seg/core/supernodes.h>
 
 #include <algorithm>
-#include <cstring>
 #include <numeric>
 
 namespace pcl_ncut_seg {
-namespace {
-/// The vertices by descending f, ties by ascending index: a stable radix sort on a key that
-/// orders floats as numbers (-0 counts as 0), linear in n.
-std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
-  const std::size_t n = f.size();
-  std::vector<std::uint32_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float v = f[i] == 0.0f ? 0.0f : f[i];
-    std::uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
-    key[i] = ~bits;                                             // descending
-  }
-  return stableOrderByKey(key);
-}
-} // namespace
-
 std::vector<std::uint32_t> Supernodes::localMaxima() const {
   std::vector<std::uint32_t> out;
   for (std::size_t s = 0; s < size(); ++s)
