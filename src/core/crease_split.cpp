@@ -328,32 +328,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
   if (splits == 0)
     return input;
   // Compact ids in order of each supernode's first point (by index).
-  const std::size_t m = sn.size();
-  std::vector<std::uint32_t> id(m, kNone);
-  std::uint32_t next = 0;
-  for (std::uint32_t p = 0; p < n; ++p)
-    if (id[sn.label[p]] == kNone)
-      id[sn.label[p]] = next++;
-  Supernodes out;
-  out.label.resize(n);
-  for (std::uint32_t p = 0; p < n; ++p)
-    out.label[p] = id[sn.label[p]];
-  out.origin.resize(next);
-  out.at_saddle.resize(next);
-  out.parent.assign(next, kNone);
-  out.children.resize(next);
-  for (std::uint32_t s = 0; s < m; ++s) {
-    if (id[s] == kNone)
-      continue;
-    out.origin[id[s]] = sn.origin[s];
-    out.at_saddle[id[s]] = sn.at_saddle[s];
-    if (sn.parent[s] != kNone && id[sn.parent[s]] != kNone)
-      out.parent[id[s]] = id[sn.parent[s]];
-  }
-  for (std::uint32_t s = 0; s < next; ++s)
-    if (out.parent[s] != kNone)
-      out.children[out.parent[s]].push_back(s);
-  return out;
+  return renumberSupernodes(sn);
 }
 
 } // namespace pcl_ncut_seg

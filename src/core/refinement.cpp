@@ -431,31 +431,12 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
   }
 
   // Compact ids, numbered by each supernode's smallest point.
-  std::vector<std::uint32_t> new_id(w.alive.size(), kNone);
-  Supernodes out;
-  out.label.assign(n, kNone);
-  for (std::uint32_t p = 0; p < n; ++p) {
-    const std::uint32_t s = w.label[p];
-    if (new_id[s] == kNone) {
-      new_id[s] = static_cast<std::uint32_t>(out.origin.size());
-      out.origin.push_back(w.origin[s]);
-      out.at_saddle.push_back(w.at_saddle[s]);
-    }
-    out.label[p] = new_id[s];
-  }
-  const std::size_t l = out.origin.size();
-  out.parent.assign(l, kNone);
-  out.children.assign(l, {});
-  for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
-    if (new_id[s] == kNone)
-      continue;
-    if (w.parent[s] != kNone && new_id[w.parent[s]] != kNone)
-      out.parent[new_id[s]] = new_id[w.parent[s]];
-  }
-  for (std::uint32_t s = 0; s < l; ++s)
-    if (out.parent[s] != kNone)
-      out.children[out.parent[s]].push_back(s);
-  return out;
+  Supernodes all;
+  all.label = std::move(w.label);
+  all.origin = std::move(w.origin);
+  all.at_saddle = std::move(w.at_saddle);
+  all.parent = std::move(w.parent);
+  return renumberSupernodes(all);
 }
 
 } // namespace pcl_ncut_seg

@@ -24,6 +24,46 @@ std::vector<std::uint32_t> Supernodes::saddles() const {
   return out;
 }
 
+std::vector<std::uint32_t> compactLabels(const std::vector<std::uint32_t>& label,
+                                         std::size_t num_labels, std::vector<std::uint32_t>& id,
+                                         std::vector<std::uint32_t>& compact) {
+  const std::size_t n = label.size();
+  std::vector<std::uint32_t> first;
+  id.assign(num_labels, kNone);
+  compact.resize(n);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    std::uint32_t& to = id[label[p]];
+    if (to == kNone) {
+      to = static_cast<std::uint32_t>(first.size());
+      first.push_back(p);
+    }
+    compact[p] = to;
+  }
+  return first;
+}
+
+Supernodes renumberSupernodes(const Supernodes& sn) {
+  Supernodes out;
+  std::vector<std::uint32_t> id;
+  const std::size_t m = compactLabels(sn.label, sn.size(), id, out.label).size();
+  out.origin.resize(m);
+  out.at_saddle.resize(m);
+  out.parent.assign(m, kNone);
+  out.children.resize(m);
+  for (std::uint32_t s = 0; s < sn.size(); ++s) {
+    if (id[s] == kNone)
+      continue;
+    out.origin[id[s]] = sn.origin[s];
+    out.at_saddle[id[s]] = sn.at_saddle[s];
+    if (sn.parent[s] != kNone && id[sn.parent[s]] != kNone)
+      out.parent[id[s]] = id[sn.parent[s]];
+  }
+  for (std::uint32_t s = 0; s < m; ++s)
+    if (out.parent[s] != kNone)
+      out.children[out.parent[s]].push_back(s);
+  return out;
+}
+
 Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
                              float crossing_fraction) {
   const std::size_t n = graph.numVertices();
