@@ -100,224 +100,247 @@ struct Work {
     return vote.winner();
   }
 };
-} // namespace
 
-Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
-                            const std::vector<float>& radii, const Supernodes& input,
-                            const RefinementParams& params) {
-  const std::size_t n = graph.numVertices();
-  const std::size_t m = input.size();
-  std::vector<double> point_area(n);
-  for (std::size_t p = 0; p < n; ++p)
-    point_area[p] = kPi * radii[p] * radii[p];
-
+/// refineSupernodes() in steps (Sec. 4.3) over the working copy of the supernodes, with the
+/// thresholds taken before refinement and the merge-up's scratch arrays.
+struct Refiner {
+  const CsrGraph& graph;
+  const std::vector<float>& f;
+  std::vector<double> point_area; ///< per point, pi r(p)^2
   Work w;
-  w.label.assign(n, kNone);
-  for (std::size_t s = 0; s < m; ++s)
-    w.add(input.origin[s], input.at_saddle[s], kNone);
-  for (std::size_t s = 0; s < m; ++s) {
-    w.parent[s] = input.parent[s];
-    w.children[s] = input.children[s];
-  }
-  for (std::uint32_t p = 0; p < n; ++p)
-    w.addPoint(input.label[p], p, f, point_area[p]);
-  // Sec. 4.2 grows a supernode without children only from points next to its own (nothing
-  // is redirected into it), so it starts connected: step 3 searches it only once it changes.
-  for (std::size_t s = 0; s < m; ++s)
-    w.dirty[s] = w.children[s].empty() ? 0 : 1;
+  double small_area = 0.0;              ///< small: f_a below this (footnote 4)
+  float skinny_height = 0.0f;           ///< skinny: f_h below this (footnote 5)
+  std::vector<std::uint32_t> by_f;      // merge-up: the points of s in descending f
+  std::vector<std::uint64_t> sort_keys; // merge-up: by_f's sort keys
+  std::vector<std::uint32_t> members;   // merge-up: the points of s
+  std::vector<std::uint32_t> slot;      // merge-up: position of a point in by_f
+  std::vector<std::uint32_t> kid_index; // merge-up: position of a supernode in kids
+  std::vector<std::uint32_t> edge_kid;  // merge-up: per edge of a point, see bestChild()
+  static constexpr std::uint32_t kSelf = kNone - 1; // merge-up: edge_kid of a neighbour in s
 
-  // Thresholds from the supernodes before refinement (footnotes 4 and 5).
-  double total_area = 0.0;
-  float max_height = 0.0f;
-  for (std::size_t s = 0; s < m; ++s) {
-    total_area += w.area[s];
-    max_height = std::max(max_height, w.height(s));
-  }
-  const double small_area = params.area_fraction * total_area;
-  const float skinny_height = params.height_fraction * max_height;
-  auto small = [&](std::uint32_t s) { return w.area[s] < small_area; };
-  auto skinny = [&](std::uint32_t s) { return w.height(s) < skinny_height; };
-
-  // 1. Merge-up: a small supernode created at a saddle goes back to the supernodes that
-  //    terminate there. Its points join them by growing from them, highest f first.
-  // Steps 1 and 2 repeat until nothing merges: a merge moves children and grows supernodes,
-  // which can make another supernode eligible.
-  std::vector<std::uint32_t> by_f;
-  std::vector<std::uint64_t> sort_keys;      // merge-up: by_f's sort keys
-  std::vector<std::uint32_t> members;        // merge-up: the points of s
-  std::vector<std::uint32_t> slot(n, kNone); // merge-up: position of a point in by_f
-  std::vector<std::uint32_t> kid_index;      // merge-up: position of a supernode in kids
-  std::vector<std::uint32_t> edge_kid;       // merge-up: per edge of a point, see below
-  constexpr std::uint32_t kSelf = kNone - 1; // merge-up: edge_kid of a neighbour still in s
-  // Steps 1-3 repeat until nothing changes (a few rounds at most): the kept region of a
-  // split supernode is re-tested too.
-  for (int round = 0; round < 8; ++round) {
-    bool changed = false;
-    for (bool merged = true; merged;) {
-      merged = false;
-      for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
-        if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
-          continue;
-        merged = changed = true;
-        const std::vector<std::uint32_t> kids = w.children[s];
-        // Descending f, ties by ascending index: sorted as one 64-bit key per point (the
-        // order of floats as numbers in the high half, the index in the low), so that the
-        // sort does not read f at random.
-        sort_keys.resize(w.points[s].size());
-        for (std::size_t i = 0; i < sort_keys.size(); ++i) {
-          const std::uint32_t p = w.points[s][i];
-          sort_keys[i] = (std::uint64_t(descendingKey(f[p])) << 32) | p;
-        }
-        std::sort(sort_keys.begin(), sort_keys.end());
-        by_f.resize(sort_keys.size());
-        for (std::size_t i = 0; i < sort_keys.size(); ++i)
-          by_f[i] = static_cast<std::uint32_t>(sort_keys[i]);
-        members.clear();
-        members.swap(w.points[s]); // s's points in their own order, which follows memory
-        w.area[s] = 0.0;
-        // Passes over the points in by_f order, each point joining the child most of its
-        // neighbours belong to, until a pass changes nothing. Simulated by events: a point is
-        // examined only at its turn in the first pass where it touches a child, so the cost is
-        // linear in the supernode's edges instead of edges times passes.
-        const auto count = static_cast<std::uint32_t>(by_f.size());
-        for (std::uint32_t i = 0; i < count; ++i)
-          slot[by_f[i]] = i;
-        std::vector<std::uint8_t> state(count, 0); // 0 pending, 1 scheduled, 2 assigned
-        std::priority_queue<std::uint64_t, std::vector<std::uint64_t>, std::greater<>> turns;
-        // kid_index[t]: t's position in kids, for one pass over the edges whatever the number
-        // of children.
-        if (kid_index.size() < w.alive.size())
-          kid_index.resize(w.alive.size(), kNone);
-        for (std::uint32_t j = 0; j < kids.size(); ++j)
-          kid_index[kids[j]] = j;
-        std::vector<std::uint32_t> kid_count(kids.size(), 0);
-        auto touchesChild = [&](std::uint32_t p) {
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-            const std::uint32_t t = w.label[graph.targets[e]];
-            if (t < kid_index.size() && kid_index[t] != kNone)
-              return true;
-          }
-          return false;
-        };
-        // Read in s's own order (by_f jumps around memory), then queued in by_f order.
-        for (std::uint32_t p : members)
-          if (touchesChild(p))
-            state[slot[p]] = 1;
-        for (std::uint32_t i = 0; i < count; ++i)
-          if (state[i] == 1)
-            turns.push(i); // pass 0
-        while (!turns.empty()) {
-          const std::uint64_t turn = turns.top();
-          turns.pop();
-          const std::uint64_t pass = turn >> 32;
-          const auto i = static_cast<std::uint32_t>(turn);
-          const std::uint32_t p = by_f[i];
-          // One read of the neighbours' labels (the memory-bound part), kept in edge_kid:
-          // a neighbour's position in kids, kSelf when it is still in s, kNone otherwise.
-          // Assigning p changes only p's label, so the cached labels stay exact below.
-          const std::uint32_t b = graph.offsets[p], deg = graph.offsets[p + 1] - b;
-          edge_kid.resize(deg);
-          for (std::uint32_t k = 0; k < deg; ++k) {
-            const std::uint32_t t = w.label[graph.targets[b + k]];
-            const std::uint32_t j = t < kid_index.size() ? kid_index[t] : kNone;
-            edge_kid[k] = t == s ? kSelf : j;
-            if (j != kNone)
-              ++kid_count[j];
-          }
-          // The child most neighbours belong to, ties to the first in kids.
-          std::uint32_t best_j = kNone, best_count = 0;
-          for (std::uint32_t k = 0; k < deg; ++k) {
-            const std::uint32_t j = edge_kid[k];
-            if (j >= kids.size())
-              continue;
-            const std::uint32_t c = kid_count[j];
-            if (c > best_count || (c == best_count && j < best_j)) {
-              best_j = j;
-              best_count = c;
-            }
-          }
-          for (std::uint32_t k = 0; k < deg; ++k)
-            if (edge_kid[k] < kids.size())
-              kid_count[edge_kid[k]] = 0;
-          const std::uint32_t best = kids[best_j];
-          // A child neighbour never leaves: best is set, and stays connected.
-          w.addPoint(best, p, f, point_area[p]);
-          state[i] = 2;
-          for (std::uint32_t k = 0; k < deg; ++k) {
-            const std::uint32_t q = graph.targets[b + k];
-            if (edge_kid[k] != kSelf || state[slot[q]] != 0)
-              continue;
-            state[slot[q]] = 1;
-            turns.push(((slot[q] > i ? pass : pass + 1) << 32) | slot[q]);
-          }
-        }
-        for (std::uint32_t kid : kids)
-          kid_index[kid] = kNone;
-        std::vector<std::uint32_t> pending;
-        for (std::uint32_t i = 0; i < count; ++i) {
-          if (state[i] != 2)
-            pending.push_back(by_f[i]);
-          slot[by_f[i]] = kNone;
-        }
-        // Points that never touch a child: the largest child takes them; step 3 re-tests them.
-        std::uint32_t largest = kids.front();
-        for (std::uint32_t kid : kids)
-          if (w.area[kid] > w.area[largest])
-            largest = kid;
-        for (std::uint32_t p : pending)
-          w.addPoint(largest, p, f, point_area[p]);
-        if (!pending.empty())
-          w.dirty[largest] = 1;
-        w.replaceChild(w.parent[s], s, kids);
-        if (w.parent[s] == kNone)
-          for (std::uint32_t kid : kids)
-            w.parent[kid] = kNone;
-        w.children[s].clear();
-        w.parent[s] = kNone;
-        w.alive[s] = false;
-      }
-
-      // 2. Merge-down: a skinny supernode, or a small one not merged up, that terminates at a
-      //    saddle joins the supernode created there.
-      for (std::uint32_t s = 0; s < w.alive.size(); ++s)
-        if (w.alive[s] && w.parent[s] != kNone && (skinny(s) || small(s))) {
-          w.mergeInto(s, w.parent[s], f, point_area);
-          merged = changed = true;
-        }
+  Refiner(const CsrGraph& graph, const std::vector<float>& f, const std::vector<float>& radii,
+          const Supernodes& input, const RefinementParams& params)
+      : graph(graph), f(f), point_area(graph.numVertices()) {
+    const std::size_t n = graph.numVertices();
+    for (std::size_t p = 0; p < n; ++p)
+      point_area[p] = kPi * radii[p] * radii[p];
+    copyInput(input);
+    // Thresholds from the supernodes before refinement (footnotes 4 and 5).
+    double total_area = 0.0;
+    float max_height = 0.0f;
+    for (std::size_t s = 0; s < input.size(); ++s) {
+      total_area += w.area[s];
+      max_height = std::max(max_height, w.height(s));
     }
+    small_area = params.area_fraction * total_area;
+    skinny_height = params.height_fraction * max_height;
+    slot.assign(n, kNone);
+  }
 
-    // 3. Disconnected regions: all but the largest are re-tested.
-    std::vector<std::uint32_t> region(n, kNone);
+  /// The working copy of the input supernodes, with their statistics.
+  void copyInput(const Supernodes& input) {
+    const std::size_t n = graph.numVertices(), m = input.size();
+    w.label.assign(n, kNone);
+    for (std::size_t s = 0; s < m; ++s)
+      w.add(input.origin[s], input.at_saddle[s], kNone);
+    for (std::size_t s = 0; s < m; ++s) {
+      w.parent[s] = input.parent[s];
+      w.children[s] = input.children[s];
+    }
+    for (std::uint32_t p = 0; p < n; ++p)
+      w.addPoint(input.label[p], p, f, point_area[p]);
+    // Sec. 4.2 grows a supernode without children only from points next to its own (nothing
+    // is redirected into it), so it starts connected: step 3 searches it only once it changes.
+    for (std::size_t s = 0; s < m; ++s)
+      w.dirty[s] = w.children[s].empty() ? 0 : 1;
+  }
+
+  /// s is small (footnote 4) or skinny (footnote 5) by the thresholds before refinement.
+  bool small(std::uint32_t s) const { return w.area[s] < small_area; }
+  bool skinny(std::uint32_t s) const { return w.height(s) < skinny_height; }
+
+  /// 1. Merge-up: every small supernode created at a saddle goes back to the supernodes that
+  ///    terminate there. Returns whether any did.
+  bool mergeUpAll() {
+    bool merged = false;
+    for (std::uint32_t s = 0; s < w.alive.size(); ++s) {
+      if (!w.alive[s] || !w.at_saddle[s] || !small(s) || w.children[s].empty())
+        continue;
+      merged = true;
+      mergeUp(s);
+    }
+    return merged;
+  }
+
+  /// Merge-up of s: its points join its children by growing from them, highest f first; s
+  /// is dissolved and its children take its place in the tree.
+  void mergeUp(std::uint32_t s) {
+    const std::vector<std::uint32_t> kids = w.children[s];
+    takePointsByF(s);
+    // Per by_f position: 0 pending, 1 scheduled, 2 assigned.
+    std::vector<std::uint8_t> state(by_f.size(), 0);
+    growIntoChildren(s, kids, state);
+    placeUntouched(kids, state);
+    w.replaceChild(w.parent[s], s, kids);
+    if (w.parent[s] == kNone)
+      for (std::uint32_t kid : kids)
+        w.parent[kid] = kNone;
+    w.children[s].clear();
+    w.parent[s] = kNone;
+    w.alive[s] = false;
+  }
+
+  /// Takes s's points out of s: into by_f in descending f, ties by ascending index (slot[p]
+  /// its position there), and into members in s's own order, which follows memory.
+  void takePointsByF(std::uint32_t s) {
+    // Sorted as one 64-bit key per point (the order of floats as numbers in the high half,
+    // the index in the low), so that the sort does not read f at random.
+    sort_keys.resize(w.points[s].size());
+    for (std::size_t i = 0; i < sort_keys.size(); ++i) {
+      const std::uint32_t p = w.points[s][i];
+      sort_keys[i] = (std::uint64_t(descendingKey(f[p])) << 32) | p;
+    }
+    std::sort(sort_keys.begin(), sort_keys.end());
+    by_f.resize(sort_keys.size());
+    for (std::size_t i = 0; i < sort_keys.size(); ++i)
+      by_f[i] = static_cast<std::uint32_t>(sort_keys[i]);
+    members.clear();
+    members.swap(w.points[s]);
+    w.area[s] = 0.0;
+    for (std::uint32_t i = 0; i < by_f.size(); ++i)
+      slot[by_f[i]] = i;
+  }
+
+  /// p has a neighbour in one of the kids (kid_index set).
+  bool touchesChild(std::uint32_t p) const {
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const std::uint32_t t = w.label[graph.targets[e]];
+      if (t < kid_index.size() && kid_index[t] != kNone)
+        return true;
+    }
+    return false;
+  }
+
+  /// Passes over s's points in by_f order, each point joining the child most of its
+  /// neighbours belong to, until a pass changes nothing. Simulated by events: a point is
+  /// examined only at its turn in the first pass where it touches a child, so the cost is
+  /// linear in the supernode's edges instead of edges times passes.
+  void growIntoChildren(std::uint32_t s, const std::vector<std::uint32_t>& kids,
+                        std::vector<std::uint8_t>& state) {
+    const auto count = static_cast<std::uint32_t>(by_f.size());
+    std::priority_queue<std::uint64_t, std::vector<std::uint64_t>, std::greater<>> turns;
+    // kid_index[t]: t's position in kids, for one pass over the edges whatever the number of
+    // children.
+    if (kid_index.size() < w.alive.size())
+      kid_index.resize(w.alive.size(), kNone);
+    for (std::uint32_t j = 0; j < kids.size(); ++j)
+      kid_index[kids[j]] = j;
+    std::vector<std::uint32_t> kid_count(kids.size(), 0);
+    // Read in s's own order (by_f jumps around memory), then queued in by_f order.
+    for (std::uint32_t p : members)
+      if (touchesChild(p))
+        state[slot[p]] = 1;
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (state[i] == 1)
+        turns.push(i); // pass 0
+    while (!turns.empty()) {
+      const std::uint64_t turn = turns.top();
+      turns.pop();
+      const std::uint64_t pass = turn >> 32;
+      const auto i = static_cast<std::uint32_t>(turn);
+      const std::uint32_t p = by_f[i];
+      const std::uint32_t best = kids[bestChild(s, p, kids, kid_count)];
+      // A child neighbour never leaves: best is set, and stays connected.
+      w.addPoint(best, p, f, point_area[p]);
+      state[i] = 2;
+      const std::uint32_t b = graph.offsets[p], deg = graph.offsets[p + 1] - b;
+      for (std::uint32_t k = 0; k < deg; ++k) {
+        const std::uint32_t q = graph.targets[b + k];
+        if (edge_kid[k] != kSelf || state[slot[q]] != 0)
+          continue;
+        state[slot[q]] = 1;
+        turns.push(((slot[q] > i ? pass : pass + 1) << 32) | slot[q]);
+      }
+    }
+    for (std::uint32_t kid : kids)
+      kid_index[kid] = kNone;
+  }
+
+  /// The position in kids of the child most of p's neighbours belong to, ties to the first.
+  /// One read of the neighbours' labels (the memory-bound part), kept in edge_kid: a
+  /// neighbour's position in kids, kSelf when it is still in s, kNone otherwise. Assigning p
+  /// changes only p's label, so the cached labels stay exact for growIntoChildren().
+  std::uint32_t bestChild(std::uint32_t s, std::uint32_t p, const std::vector<std::uint32_t>& kids,
+                          std::vector<std::uint32_t>& kid_count) {
+    const std::uint32_t b = graph.offsets[p], deg = graph.offsets[p + 1] - b;
+    edge_kid.resize(deg);
+    for (std::uint32_t k = 0; k < deg; ++k) {
+      const std::uint32_t t = w.label[graph.targets[b + k]];
+      const std::uint32_t j = t < kid_index.size() ? kid_index[t] : kNone;
+      edge_kid[k] = t == s ? kSelf : j;
+      if (j != kNone)
+        ++kid_count[j];
+    }
+    std::uint32_t best_j = kNone, best_count = 0;
+    for (std::uint32_t k = 0; k < deg; ++k) {
+      const std::uint32_t j = edge_kid[k];
+      if (j >= kids.size())
+        continue;
+      const std::uint32_t c = kid_count[j];
+      if (c > best_count || (c == best_count && j < best_j)) {
+        best_j = j;
+        best_count = c;
+      }
+    }
+    for (std::uint32_t k = 0; k < deg; ++k)
+      if (edge_kid[k] < kids.size())
+        kid_count[edge_kid[k]] = 0;
+    return best_j;
+  }
+
+  /// Points that never touch a child: the largest child takes them; step 3 re-tests them.
+  void placeUntouched(const std::vector<std::uint32_t>& kids,
+                      const std::vector<std::uint8_t>& state) {
+    std::vector<std::uint32_t> pending;
+    for (std::uint32_t i = 0; i < by_f.size(); ++i) {
+      if (state[i] != 2)
+        pending.push_back(by_f[i]);
+      slot[by_f[i]] = kNone;
+    }
+    std::uint32_t largest = kids.front();
+    for (std::uint32_t kid : kids)
+      if (w.area[kid] > w.area[largest])
+        largest = kid;
+    for (std::uint32_t p : pending)
+      w.addPoint(largest, p, f, point_area[p]);
+    if (!pending.empty())
+      w.dirty[largest] = 1;
+  }
+
+  /// 2. Merge-down: a skinny supernode, or a small one not merged up, that terminates at a
+  ///    saddle joins the supernode created there. Returns whether any did.
+  bool mergeDown() {
+    bool merged = false;
+    for (std::uint32_t s = 0; s < w.alive.size(); ++s)
+      if (w.alive[s] && w.parent[s] != kNone && (skinny(s) || small(s))) {
+        w.mergeInto(s, w.parent[s], f, point_area);
+        merged = true;
+      }
+    return merged;
+  }
+
+  /// 3. Disconnected regions: in each supernode that may be disconnected, all regions but the
+  ///    largest are re-tested. Returns whether any supernode was.
+  bool splitDisconnected() {
+    bool changed = false;
+    std::vector<std::uint32_t> region(graph.numVertices(), kNone);
     const std::size_t before_regions = w.alive.size();
     for (std::uint32_t s = 0; s < before_regions; ++s) {
       // Only a supernode marked dirty can be disconnected (see Work::dirty): most are not.
       if (!w.alive[s] || w.points[s].empty() || !w.dirty[s])
         continue;
       w.dirty[s] = 0;
-      std::vector<std::vector<std::uint32_t>> regions;
-      std::vector<std::uint32_t> stack;
-      for (std::uint32_t seed : w.points[s]) {
-        if (region[seed] != kNone)
-          continue;
-        const auto r = static_cast<std::uint32_t>(regions.size());
-        regions.emplace_back();
-        region[seed] = r;
-        stack.push_back(seed);
-        while (!stack.empty()) {
-          const std::uint32_t p = stack.back();
-          stack.pop_back();
-          regions[r].push_back(p);
-          for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-            const std::uint32_t q = graph.targets[e];
-            if (w.label[q] == s && region[q] == kNone) {
-              region[q] = r;
-              stack.push_back(q);
-            }
-          }
-        }
-      }
-      for (std::uint32_t p : w.points[s])
-        region[p] = kNone;
+      std::vector<std::vector<std::uint32_t>> regions = regionsOf(s, region);
       if (regions.size() < 2)
         continue;
       changed = true;
@@ -332,58 +355,122 @@ Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
       w.fmax[s] = -std::numeric_limits<float>::infinity();
       for (std::uint32_t p : regions[keep])
         w.addPoint(s, p, f, point_area[p]);
-      for (std::size_t r = 0; r < regions.size(); ++r) {
-        if (r == keep)
-          continue;
-        double area = 0.0;
-        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-        for (std::uint32_t p : regions[r]) {
-          area += point_area[p];
-          lo = std::min(lo, f[p]);
-          hi = std::max(hi, f[p]);
-        }
-        std::sort(regions[r].begin(), regions[r].end());
-        const std::uint32_t t = (area < small_area || hi - lo < skinny_height)
-                                    ? w.bestNeighbour(graph, regions[r], s)
-                                    : kNone;
-        if (t != kNone) { // t shares edges with the region: t stays connected if it was
-          for (std::uint32_t p : regions[r])
-            w.addPoint(t, p, f, point_area[p]);
-        } else {
-          const std::uint32_t fresh = w.add(regions[r].front(), false, w.parent[s]);
-          for (std::uint32_t p : regions[r])
-            w.addPoint(fresh, p, f, point_area[p]);
+      for (std::size_t r = 0; r < regions.size(); ++r)
+        if (r != keep)
+          placeRegion(s, regions[r]);
+    }
+    return changed;
+  }
+
+  /// The connected regions of s's points on the graph, each from its first point in s's
+  /// order (depth first). region: kNone per point, and so again on return.
+  std::vector<std::vector<std::uint32_t>> regionsOf(std::uint32_t s,
+                                                    std::vector<std::uint32_t>& region) const {
+    std::vector<std::vector<std::uint32_t>> regions;
+    std::vector<std::uint32_t> stack;
+    for (std::uint32_t seed : w.points[s]) {
+      if (region[seed] != kNone)
+        continue;
+      const auto r = static_cast<std::uint32_t>(regions.size());
+      regions.emplace_back();
+      region[seed] = r;
+      stack.push_back(seed);
+      while (!stack.empty()) {
+        const std::uint32_t p = stack.back();
+        stack.pop_back();
+        regions[r].push_back(p);
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (w.label[q] == s && region[q] == kNone) {
+            region[q] = r;
+            stack.push_back(q);
+          }
         }
       }
     }
+    for (std::uint32_t p : w.points[s])
+      region[p] = kNone;
+    return regions;
+  }
+
+  /// A region cut off s: a small or skinny one joins the neighbouring supernode it shares most
+  /// kNN edges with, any other becomes a supernode of its own (terminating where s does).
+  void placeRegion(std::uint32_t s, std::vector<std::uint32_t>& points) {
+    double area = 0.0;
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (std::uint32_t p : points) {
+      area += point_area[p];
+      lo = std::min(lo, f[p]);
+      hi = std::max(hi, f[p]);
+    }
+    std::sort(points.begin(), points.end());
+    const std::uint32_t t =
+        (area < small_area || hi - lo < skinny_height) ? w.bestNeighbour(graph, points, s) : kNone;
+    if (t != kNone) { // t shares edges with the region: t stays connected if it was
+      for (std::uint32_t p : points)
+        w.addPoint(t, p, f, point_area[p]);
+    } else {
+      const std::uint32_t fresh = w.add(points.front(), false, w.parent[s]);
+      for (std::uint32_t p : points)
+        w.addPoint(fresh, p, f, point_area[p]);
+    }
+  }
+
+  /// 4. A small or skinny supernode with no saddle relation joins its point-wise neighbour,
+  ///    the smallest first.
+  void mergeLoners() {
+    std::vector<std::uint32_t> lone;
+    for (std::uint32_t s = 0; s < w.alive.size(); ++s)
+      if (w.alive[s] && !w.points[s].empty() && w.parent[s] == kNone && w.children[s].empty() &&
+          (small(s) || skinny(s)))
+        lone.push_back(s);
+    std::sort(lone.begin(), lone.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return w.area[a] < w.area[b] || (w.area[a] == w.area[b] && a < b);
+    });
+    for (std::uint32_t s : lone) {
+      if (!w.alive[s] || !(small(s) || skinny(s)))
+        continue;
+      const std::uint32_t t = w.bestNeighbour(graph, w.points[s], s);
+      if (t != kNone)
+        w.mergeInto(s, t, f, point_area);
+    }
+  }
+
+  /// The refined supernodes, with compact ids numbered by each one's smallest point.
+  Supernodes result() {
+    Supernodes all;
+    all.label = std::move(w.label);
+    all.origin = std::move(w.origin);
+    all.at_saddle = std::move(w.at_saddle);
+    all.parent = std::move(w.parent);
+    return renumberSupernodes(all);
+  }
+};
+} // namespace
+
+Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
+                            const std::vector<float>& radii, const Supernodes& input,
+                            const RefinementParams& params) {
+  Refiner refiner(graph, f, radii, input, params);
+  // Steps 1-3 repeat until nothing changes (a few rounds at most): the kept region of a
+  // split supernode is re-tested too.
+  for (int round = 0; round < 8; ++round) {
+    bool changed = false;
+    // Steps 1 and 2 repeat until nothing merges: a merge moves children and grows supernodes,
+    // which can make another supernode eligible.
+    for (bool merged = true; merged;) {
+      const bool up = refiner.mergeUpAll();
+      const bool down = refiner.mergeDown();
+      merged = up || down;
+      changed = changed || merged;
+    }
+    if (refiner.splitDisconnected())
+      changed = true;
     if (!changed)
       break;
   }
-
-  // 4. A small or skinny supernode with no saddle relation joins its point-wise neighbour.
-  std::vector<std::uint32_t> lone;
-  for (std::uint32_t s = 0; s < w.alive.size(); ++s)
-    if (w.alive[s] && !w.points[s].empty() && w.parent[s] == kNone && w.children[s].empty() &&
-        (small(s) || skinny(s)))
-      lone.push_back(s);
-  std::sort(lone.begin(), lone.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return w.area[a] < w.area[b] || (w.area[a] == w.area[b] && a < b);
-  });
-  for (std::uint32_t s : lone) {
-    if (!w.alive[s] || !(small(s) || skinny(s)))
-      continue;
-    const std::uint32_t t = w.bestNeighbour(graph, w.points[s], s);
-    if (t != kNone)
-      w.mergeInto(s, t, f, point_area);
-  }
-
-  // Compact ids, numbered by each supernode's smallest point.
-  Supernodes all;
-  all.label = std::move(w.label);
-  all.origin = std::move(w.origin);
-  all.at_saddle = std::move(w.at_saddle);
-  all.parent = std::move(w.parent);
-  return renumberSupernodes(all);
+  refiner.mergeLoners();
+  return refiner.result();
 }
 
 } // namespace pcl_ncut_seg
