@@ -4,6 +4,7 @@
 #include <pcl_ncut_seg/core/flow_network.h>
 #include <pcl_ncut_seg/core/prefetch.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
+#include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
@@ -12,13 +13,6 @@
 
 namespace pcl_ncut_seg {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
-/// A point's feature area pi r(p)^2, as f_a of Sec. 4.3.
-double pointArea(const std::vector<float>& radii, std::uint32_t p) {
-  return kPi * radii[p] * radii[p];
-}
-
 /// The total feature area of the n points, summed in blocks of 4096 points as meanAbsBend()
 /// sums the bends.
 double totalArea(const std::vector<float>& radii, std::size_t n) {
@@ -26,7 +20,7 @@ double totalArea(const std::vector<float>& radii, std::size_t n) {
   for (std::uint32_t first = 0; first < n; first += 4096) {
     double block_area = 0.0;
     for (std::uint32_t p = first; p < std::min<std::size_t>(n, first + 4096u); ++p)
-      block_area += pointArea(radii, p);
+      block_area += pointArea(radii[p]);
     total_area += block_area;
   }
   return total_area;
@@ -106,7 +100,7 @@ struct CreaseSplitter {
   double area(std::uint32_t s) const {
     double sum = 0.0;
     for (std::uint32_t p : points[s])
-      sum += pointArea(radii, p);
+      sum += pointArea(radii[p]);
     return sum;
   }
 
@@ -140,7 +134,7 @@ struct CreaseSplitter {
       }
       const std::uint32_t p = pts[i];
       in_top[p] = 1;
-      top_area += pointArea(radii, p);
+      top_area += pointArea(radii[p]);
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         if (q == p || sn.label[q] != s)
@@ -172,9 +166,9 @@ struct CreaseSplitter {
     top_end = 0;
     bottom_begin = pts.size();
     for (double a = 0.0; top_end < pts.size() && a < seed; ++top_end)
-      a += pointArea(radii, pts[top_end]);
+      a += pointArea(radii[pts[top_end]]);
     for (double a = 0.0; bottom_begin > 0 && a < seed; --bottom_begin)
-      a += pointArea(radii, pts[bottom_begin - 1]);
+      a += pointArea(radii[pts[bottom_begin - 1]]);
   }
 
   /// The capacity of edge e from p in the crease cut: its length, lowered across concave bends.

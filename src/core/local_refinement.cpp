@@ -11,8 +11,6 @@
 namespace pcl_ncut_seg {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 /// Working copy of the supernodes during refinement, with incrementally merged statistics.
 struct Work {
   std::vector<std::uint32_t> label;
@@ -123,7 +121,7 @@ struct Refiner {
       : graph(graph), f(f), point_area(graph.numVertices()) {
     const std::size_t n = graph.numVertices();
     for (std::size_t p = 0; p < n; ++p)
-      point_area[p] = kPi * radii[p] * radii[p];
+      point_area[p] = pointArea(radii[p]);
     copyInput(input);
     // Thresholds from the supernodes before refinement (footnotes 4 and 5).
     double total_area = 0.0;

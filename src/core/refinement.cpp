@@ -29,8 +29,6 @@ std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f
 }
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
-
 float widthOf(double area, double height, double max_height) {
   const double floor = 1e-6 * max_height > 0 ? 1e-6 * max_height : 1e-30;
   return static_cast<float>(area / std::max(height, floor));
@@ -45,7 +43,7 @@ FeatureStats featureStats(const Supernodes& sn, const std::vector<float>& f,
       fmax(m, -std::numeric_limits<float>::infinity());
   for (std::size_t p = 0; p < sn.label.size(); ++p) {
     const std::uint32_t s = sn.label[p];
-    area[s] += kPi * radii[p] * radii[p];
+    area[s] += pointArea(radii[p]);
     fmin[s] = std::min(fmin[s], f[p]);
     fmax[s] = std::max(fmax[s], f[p]);
   }
