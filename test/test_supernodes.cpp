@@ -168,3 +168,30 @@ TEST(Refinement, SkinnySupernodeIsMergedDownIntoItsSaddle) {
   EXPECT_EQ(out.label[20], out.label[22]); // merged down into the saddle's supernode
   EXPECT_NE(out.label[0], out.label[22]);
 }
+
+TEST(Supernodes, CompactLabelsNumberLabelsByTheirFirstPoint) {
+  // Labels 3, 0 and 5 of 7 are carried, first by points 0, 1 and 3.
+  const std::vector<std::uint32_t> label = {3, 0, 3, 5, 0};
+  std::vector<std::uint32_t> id, compact;
+  const std::vector<std::uint32_t> first = compactLabels(label, 7, id, compact);
+  EXPECT_EQ(first, (std::vector<std::uint32_t>{0, 1, 3}));
+  EXPECT_EQ(compact, (std::vector<std::uint32_t>{0, 1, 0, 2, 1}));
+  EXPECT_EQ(id, (std::vector<std::uint32_t>{1, kNone, kNone, 0, kNone, 2, kNone}));
+}
+
+TEST(Supernodes, RenumberingKeepsTheSaddleRelationsOfTheSupernodesLeft) {
+  // Supernode 1 is empty; 3 terminates at 0, 2 at 1 (which is dropped), 0 at nothing.
+  Supernodes sn;
+  sn.label = {2, 3, 0, 3};
+  sn.origin = {10, 11, 12, 13};
+  sn.at_saddle = {true, true, false, false};
+  sn.parent = {kNone, kNone, 1, 0};
+  const Supernodes out = renumberSupernodes(sn);
+  ASSERT_EQ(out.size(), 3u); // 2 -> 0, 3 -> 1, 0 -> 2
+  EXPECT_EQ(out.label, (std::vector<std::uint32_t>{0, 1, 2, 1}));
+  EXPECT_EQ(out.origin, (std::vector<std::uint32_t>{12, 13, 10}));
+  EXPECT_EQ(out.at_saddle, (std::vector<bool>{false, false, true}));
+  EXPECT_EQ(out.parent, (std::vector<std::uint32_t>{kNone, 2, kNone}));
+  EXPECT_EQ(out.children[2], (std::vector<std::uint32_t>{1}));
+  EXPECT_TRUE(out.children[0].empty());
+}

@@ -416,28 +416,18 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
   }
   owner.swap(refined);
 
-  // Compact ids in order of each supernode's first point; a component made of ridge points
-  // only keeps its old supernode.
-  Supernodes out;
-  out.label.assign(n, kNone);
-  std::map<std::uint32_t, std::uint32_t> id_of_owner, id_of_label;
+  // Compact ids in order of each supernode's first point, which is its origin; a component
+  // made of ridge points only keeps its old supernode (its key follows the regions' keys).
+  const std::uint32_t num_regions = static_cast<std::uint32_t>(r);
+  std::uint32_t num_labels = 0;
+  std::vector<std::uint32_t> key(n);
   for (std::uint32_t p = 0; p < n; ++p) {
-    std::uint32_t id;
-    if (owner[p] != kNone) {
-      auto it = id_of_owner.find(owner[p]);
-      if (it == id_of_owner.end())
-        it = id_of_owner.emplace(owner[p], static_cast<std::uint32_t>(out.origin.size())).first,
-        out.origin.push_back(p);
-      id = it->second;
-    } else {
-      auto it = id_of_label.find(label[p]);
-      if (it == id_of_label.end())
-        it = id_of_label.emplace(label[p], static_cast<std::uint32_t>(out.origin.size())).first,
-        out.origin.push_back(p);
-      id = it->second;
-    }
-    out.label[p] = id;
+    key[p] = owner[p] != kNone ? owner[p] : num_regions + label[p];
+    num_labels = std::max(num_labels, label[p] + 1);
   }
+  Supernodes out;
+  std::vector<std::uint32_t> id;
+  out.origin = compactLabels(key, std::size_t{num_regions} + num_labels, id, out.label);
   out.at_saddle.assign(out.origin.size(), false);
   out.parent.assign(out.origin.size(), kNone);
   out.children.assign(out.origin.size(), {});

@@ -30,4 +30,11 @@ std::vector<std::uint32_t> stableOrderByKey(const std::vector<std::uint32_t>& ke
   return order;
 }
 
+std::vector<std::uint32_t> descendingOrder(const std::vector<float>& value) {
+  std::vector<std::uint32_t> key(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i)
+    key[i] = descendingKey(value[i]);
+  return stableOrderByKey(key);
+}
+
 } // namespace pcl_ncut_seg

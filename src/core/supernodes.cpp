@@ -5,27 +5,9 @@
 #include <pcl_ncut_seg/core/supernodes.h>
 
 #include <algorithm>
-#include <cstring>
 #include <numeric>
 
 namespace pcl_ncut_seg {
-namespace {
-/// The vertices by descending f, ties by ascending index: a stable radix sort on a key that
-/// orders floats as numbers (-0 counts as 0), linear in n.
-std::vector<std::uint32_t> descendingOrder(const std::vector<float>& f) {
-  const std::size_t n = f.size();
-  std::vector<std::uint32_t> key(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const float v = f[i] == 0.0f ? 0.0f : f[i];
-    std::uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u); // ascending as numbers
-    key[i] = ~bits;                                             // descending
-  }
-  return stableOrderByKey(key);
-}
-} // namespace
-
 std::vector<std::uint32_t> Supernodes::localMaxima() const {
   std::vector<std::uint32_t> out;
   for (std::size_t s = 0; s < size(); ++s)
@@ -39,6 +21,46 @@ std::vector<std::uint32_t> Supernodes::saddles() const {
   for (std::size_t s = 0; s < size(); ++s)
     if (at_saddle[s])
       out.push_back(origin[s]);
+  return out;
+}
+
+std::vector<std::uint32_t> compactLabels(const std::vector<std::uint32_t>& label,
+                                         std::size_t num_labels, std::vector<std::uint32_t>& id,
+                                         std::vector<std::uint32_t>& compact) {
+  const std::size_t n = label.size();
+  std::vector<std::uint32_t> first;
+  id.assign(num_labels, kNone);
+  compact.resize(n);
+  for (std::uint32_t p = 0; p < n; ++p) {
+    std::uint32_t& to = id[label[p]];
+    if (to == kNone) {
+      to = static_cast<std::uint32_t>(first.size());
+      first.push_back(p);
+    }
+    compact[p] = to;
+  }
+  return first;
+}
+
+Supernodes renumberSupernodes(const Supernodes& sn) {
+  Supernodes out;
+  std::vector<std::uint32_t> id;
+  const std::size_t m = compactLabels(sn.label, sn.size(), id, out.label).size();
+  out.origin.resize(m);
+  out.at_saddle.resize(m);
+  out.parent.assign(m, kNone);
+  out.children.resize(m);
+  for (std::uint32_t s = 0; s < sn.size(); ++s) {
+    if (id[s] == kNone)
+      continue;
+    out.origin[id[s]] = sn.origin[s];
+    out.at_saddle[id[s]] = sn.at_saddle[s];
+    if (sn.parent[s] != kNone && id[sn.parent[s]] != kNone)
+      out.parent[id[s]] = id[sn.parent[s]];
+  }
+  for (std::uint32_t s = 0; s < m; ++s)
+    if (out.parent[s] != kNone)
+      out.children[out.parent[s]].push_back(s);
   return out;
 }
 

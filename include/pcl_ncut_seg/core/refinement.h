@@ -18,6 +18,12 @@ inline float featureDistance(float df, float d) {
   return std::sqrt(df * df + d * d);
 }
 
+/** \brief A point's feature area pi r(p)^2 (Sec. 4.3; f_a sums it), r(p) from pointRadii(). */
+inline double pointArea(float radius) {
+  constexpr double kPi = 3.14159265358979323846;
+  return kPi * radius * radius;
+}
+
 /** \brief r(p) of Sec. 4.3: mean of ||p - q||_2 (eq. 3) over the neighbours N(p). */
 std::vector<float> pointRadii(const CsrGraph& graph, const std::vector<float>& f,
                               unsigned num_threads = 1);

@@ -49,6 +49,26 @@ struct Supernodes {
 Supernodes extractSupernodes(const CsrGraph& graph, const std::vector<float>& f,
                              float crossing_fraction);
 
+/** \brief Compact ids for labels, numbered in order of each label's first point (by index).
+ *
+ * \param[in]  label       per point, its label, in [0, num_labels)
+ * \param[in]  num_labels  how many labels there may be (some may be carried by no point)
+ * \param[out] id          per label, its compact id; kNone for a label no point carries
+ * \param[out] compact     per point, its label's compact id (id[label[p]])
+ * \return per compact id, its first point (its size is the number of compact ids) */
+std::vector<std::uint32_t> compactLabels(const std::vector<std::uint32_t>& label,
+                                         std::size_t num_labels, std::vector<std::uint32_t>& id,
+                                         std::vector<std::uint32_t>& compact);
+
+/** \brief Supernodes renumbered with compact ids in order of each one's first point (by
+ * index), as refineSupernodes() and splitAtCreases() return them; those no point is in are
+ * dropped.
+ *
+ * \param[in] sn  label, origin, at_saddle and parent (children are not read); a parent no
+ *                point is in becomes kNone
+ * \return the renumbered supernodes, each one's children in ascending id */
+Supernodes renumberSupernodes(const Supernodes& sn);
+
 /** \brief A vote among supernode labels, e.g. those of a point's neighbours, for where the
  * point should go: the label cast most often wins, ties go to the smaller label. Few distinct
  * labels are expected, so they are kept in a short list. */
