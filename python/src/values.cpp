@@ -1,5 +1,7 @@
 #include "values.h"
 
+#include <pybind11/stl.h>
+
 #include <cstdlib>
 
 namespace pcl_ncut_seg_python {
