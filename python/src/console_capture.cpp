@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <mutex>
+
 namespace pcl_ncut_seg_python {
 
 ConsoleCapture::ConsoleCapture() {
@@ -50,6 +52,14 @@ std::string ConsoleCapture::finish() {
     text += raw[i];
   }
   return text;
+}
+
+std::string runCapturingConsole(const std::function<void()>& work) {
+  static std::mutex one_at_a_time;
+  std::lock_guard<std::mutex> lock(one_at_a_time);
+  ConsoleCapture capture;
+  work();
+  return capture.finish();
 }
 
 std::vector<ConsoleLine> splitConsoleLines(const std::string& text) {

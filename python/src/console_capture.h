@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ private:
   std::FILE* file_ = nullptr;
   int saved_fd_ = -1;
 };
+
+/** \brief Run work with stderr captured; what it wrote. One capture at a time in the process
+ * (the redirection is process-wide): a second caller waits. Call it without the GIL. */
+std::string runCapturingConsole(const std::function<void()>& work);
 
 /** \brief One line PCL printed: the message without the "[pcl::Class::method] " prefix. */
 struct ConsoleLine {

@@ -123,12 +123,8 @@ py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py:
   std::string console;
   {
     BusyGuard busy(busy_);
-    ConsoleCapture capture;
-    {
-      py::gil_scoped_release release;
-      seg_.extract(segments);
-    }
-    console = capture.finish();
+    py::gil_scoped_release release; // the capture may wait for another thread's
+    console = runCapturingConsole([&] { seg_.extract(segments); });
   }
   // The library's console output: its error is the ValueError's reason, its warnings become
   // Python warnings, anything else goes back to stderr.
