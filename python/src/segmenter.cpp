@@ -285,11 +285,11 @@ std::string Segmenter::repr() const {
   s << "pcl_ncut_seg.Segmenter(";
   const pcl_ncut_seg::Parameters defaults;
   bool first = true;
-  for (const pcl_ncut_seg::ParameterInfo& r : pcl_ncut_seg::parameterTable()) {
-    if (r.get(seg_.getParameters()) == r.get(defaults))
+  for (const pcl_ncut_seg::ParameterInfo* r : keywordOrder()) {
+    if (r->get(seg_.getParameters()) == r->get(defaults))
       continue;
-    s << (first ? "" : ", ") << r.name << "="
-      << py::repr(parameterObject(r, seg_.getParameters())).cast<std::string>();
+    s << (first ? "" : ", ") << r->name << "="
+      << py::repr(parameterObject(*r, seg_.getParameters())).cast<std::string>();
     first = false;
   }
   s << ")";

@@ -124,10 +124,24 @@ void applyKeywords(Parameters& params, const py::dict& keywords) {
   params = p;
 }
 
+std::vector<const ParameterInfo*> keywordOrder() {
+  // Giving segments chooses the count rule (as the tool's -segments): segments goes before
+  // stopping, so that keywords in this order keep the rule they show.
+  std::vector<const ParameterInfo*> rows;
+  for (const ParameterInfo& r : pcl_ncut_seg::parameterTable()) {
+    if (r.name == "segments")
+      continue;
+    if (r.name == "stopping")
+      rows.push_back(pcl_ncut_seg::findParameter("segments"));
+    rows.push_back(&r);
+  }
+  return rows;
+}
+
 py::dict parameterDict(const Parameters& params) {
   py::dict d;
-  for (const ParameterInfo& r : pcl_ncut_seg::parameterTable())
-    d[py::str(r.name)] = parameterObject(r, params);
+  for (const ParameterInfo* r : keywordOrder())
+    d[py::str(r->name)] = parameterObject(*r, params);
   return d;
 }
 

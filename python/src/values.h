@@ -12,6 +12,7 @@
 #include <pcl_ncut_seg/parameter_table.h>
 
 #include <string>
+#include <vector>
 
 namespace pcl_ncut_seg_python {
 
@@ -32,7 +33,11 @@ py::object parameterObject(const pcl_ncut_seg::ParameterInfo& row,
  * unchanged on a bad name or value. */
 void applyKeywords(pcl_ncut_seg::Parameters& params, const py::dict& keywords);
 
-/** \brief {name: value} for every row, in the table's order. */
+/** \brief The rows in the table's order but for segments, which comes before stopping:
+ * keywords in this order set what they show (segments alone would choose the count rule). */
+std::vector<const pcl_ncut_seg::ParameterInfo*> keywordOrder();
+
+/** \brief {name: value} for every row, in keywordOrder(). */
 py::dict parameterDict(const pcl_ncut_seg::Parameters& params);
 
 /** \brief The table as a list of dicts (name, aliases, stage, kind, range, help, default,

@@ -87,14 +87,12 @@ def test_paper_true_is_the_papers_settings(points):
     assert paper["centrality"] == "exact" and paper["bridge_gap"] is None
     assert pcl_ncut_seg.Segmenter(paper=True).parameters == paper
     by_paper = pcl_ncut_seg.segment(points, paper=True)
-    # The same values one by one. segments is left out: giving it chooses the count rule
-    # (as the tool's -segments does), which the paper's threshold rule is not.
-    one_by_one = {k: v for k, v in paper.items() if k != "segments"}
-    assert np.array_equal(pcl_ncut_seg.segment(points, **one_by_one), by_paper)
+    # The same values one by one.
+    assert np.array_equal(pcl_ncut_seg.segment(points, **paper), by_paper)
     assert not np.array_equal(by_paper, pcl_ncut_seg.segment(points))
     # Other keywords apply on top of the preset, in any position.
     assert np.array_equal(pcl_ncut_seg.segment(points, threshold=0.05, paper=True),
-                          pcl_ncut_seg.segment(points, **dict(one_by_one, threshold=0.05)))
+                          pcl_ncut_seg.segment(points, **dict(paper, threshold=0.05)))
 
 
 def test_shorthand_exact(points):

@@ -30,7 +30,7 @@ def points():
 def test_every_parameter_is_an_attribute_of_its_name():
     seg = pcl_ncut_seg.Segmenter()
     names = [row["name"] for row in TABLE]
-    assert list(seg.parameters) == names
+    assert sorted(seg.parameters) == sorted(names)
     assert set(OTHER) == set(names)
     for row in TABLE:
         name = row["name"]
@@ -61,6 +61,19 @@ def test_setting_each_parameter_by_attribute_keyword_and_alias():
             seg.set(**{name: row["off"]})
             assert getattr(seg, name) is None
     assert pcl_ncut_seg.Segmenter(segments=4).stopping == "count"  # as the tool's -segments
+
+
+def test_parameters_given_back_as_keywords_set_the_same():
+    for keywords in ({}, {"paper": True}, {"segments": 4}, {"stopping": "largest_gap"},
+                     {"segments": 4, "stopping": "threshold"},
+                     {"paper": True, "segments": 3, "threshold": 0.3}, dict(OTHER, cad=False)):
+        seg = pcl_ncut_seg.Segmenter(**keywords)
+        assert pcl_ncut_seg.Segmenter(**seg.parameters).parameters == seg.parameters
+        assert eval(repr(seg), {"pcl_ncut_seg": pcl_ncut_seg}).parameters == seg.parameters
+    for paper in (False, True):
+        d = pcl_ncut_seg.default_parameters(paper=paper)
+        assert pcl_ncut_seg.Segmenter(**d).parameters == d
+        assert pcl_ncut_seg.Segmenter(paper=paper).parameters == d
 
 
 def test_set_is_all_or_nothing_and_repr_shows_changes():
