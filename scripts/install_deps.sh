@@ -7,6 +7,7 @@ PACKAGES=(
   build-essential cmake
   libpcl-dev libeigen3-dev libflann-dev libboost-graph-dev libspectra-dev
   libgtest-dev
+  python3-dev python3-pybind11 python3-numpy python3-pytest   # the Python module and its tests
   pcl-tools xvfb xauth
   clang libclang-rt-dev libomp-dev   # scripts/fuzz.sh: libFuzzer, sanitizer runtimes, OpenMP
 )

@@ -1,0 +1,299 @@
+#include "segmenter.h"
+
+#include "console_capture.h"
+#include "values.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+namespace pcl_ncut_seg_python {
+
+namespace {
+
+std::string shapeText(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t d = 0; d < a.ndim(); ++d)
+    s += (d ? ", " : "") + std::to_string(a.shape(d));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+template <typename T> void fillCloud(const py::array& a, pcl::PointCloud<pcl::PointXYZ>& cloud) {
+  // C-contiguous, native byte order; a copy only when the array is not already so.
+  const auto data = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
+  const T* p = data.data();
+  bool dense = true;
+  for (std::size_t i = 0; i < cloud.size(); ++i, p += 3) {
+    pcl::PointXYZ& q = cloud[i];
+    q.x = static_cast<float>(p[0]);
+    q.y = static_cast<float>(p[1]);
+    q.z = static_cast<float>(p[2]);
+    dense = dense && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+  }
+  cloud.is_dense = dense;
+}
+
+template <typename T> py::array_t<T> toArray(const std::vector<T>& v) {
+  py::array_t<T> out(static_cast<py::ssize_t>(v.size()));
+  if (!v.empty())
+    std::memcpy(out.mutable_data(), v.data(), v.size() * sizeof(T));
+  return out;
+}
+
+py::array_t<std::int64_t> indexArray(const std::vector<int>& v) {
+  return toArray(std::vector<std::int64_t>(v.begin(), v.end()));
+}
+
+/** \brief Clears a flag when it leaves scope (also by an exception). */
+struct BusyGuard {
+  std::atomic<bool>& flag;
+  explicit BusyGuard(std::atomic<bool>& f) : flag(f) { flag = true; }
+  ~BusyGuard() { flag = false; }
+};
+
+} // namespace
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr cloudFromArray(const py::handle& points) {
+  const py::array a = py::module_::import("numpy").attr("asarray")(points);
+  const py::dtype dtype = a.dtype();
+  const bool is_float = dtype.kind() == 'f' && (dtype.itemsize() == 4 || dtype.itemsize() == 8);
+  if (a.ndim() != 2 || a.shape(1) != 3 || !is_float)
+    throw py::value_error("points must be an (N, 3) array of float32 or float64, got " +
+                          dtype.attr("name").cast<std::string>() + " of shape " + shapeText(a));
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(static_cast<std::size_t>(a.shape(0)));
+  cloud->width = static_cast<std::uint32_t>(cloud->size());
+  cloud->height = 1;
+  if (dtype.itemsize() == 4)
+    fillCloud<float>(a, *cloud);
+  else
+    fillCloud<double>(a, *cloud);
+  return cloud;
+}
+
+Segmenter::Segmenter(const py::dict& keywords) {
+  set(keywords);
+  // The front end announces the kNN phase once per analysis: count them.
+  seg_.setProgressCallback([this](const char* phase, double fraction) {
+    if (fraction == 0.0 && std::strcmp(phase, "kNN") == 0)
+      ++analyses_;
+  });
+}
+
+void Segmenter::checkIdle() const {
+  if (busy_)
+    throw std::runtime_error("the Segmenter is segmenting in another thread");
+}
+
+void Segmenter::set(const py::dict& keywords) {
+  checkIdle();
+  pcl_ncut_seg::Parameters params = seg_.getParameters();
+  applyKeywords(params, keywords);
+  seg_.setParameters(params); // valid: applyKeywords checked them
+}
+
+py::object Segmenter::get(const std::string& name) const {
+  const pcl_ncut_seg::ParameterInfo* row = pcl_ncut_seg::findParameter(name);
+  if (!row)
+    throw py::value_error("unknown parameter '" + name + "'");
+  return parameterObject(*row, seg_.getParameters());
+}
+
+py::dict Segmenter::parameters() const {
+  return parameterDict(seg_.getParameters());
+}
+
+py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py::dict& keywords) {
+  checkIdle();
+  if (!points.is_none()) {
+    auto cloud = cloudFromArray(points); // before any change: bad points change nothing
+    set(keywords);
+    cloud_ = cloud;
+    seg_.setInputCloud(cloud_);
+  } else {
+    if (!cloud_)
+      throw py::value_error("no points: give an (N, 3) array of float32 or float64");
+    set(keywords);
+  }
+  have_result_ = false;
+  labels_.clear();
+  const std::size_t analyses_before = analyses_;
+  std::vector<pcl::PointIndices> segments;
+  std::string console;
+  {
+    BusyGuard busy(busy_);
+    py::gil_scoped_release release; // the capture may wait for another thread's
+    console = runCapturingConsole([&] { seg_.extract(segments); });
+  }
+  // The library's console output: its error is the ValueError's reason, its warnings become
+  // Python warnings, anything else goes back to stderr.
+  std::string error;
+  for (const ConsoleLine& line : splitConsoleLines(console)) {
+    if (!line.from_pcl) {
+      py::module_::import("sys").attr("stderr").attr("write")(line.text + "\n");
+    } else if (segments.empty()) {
+      error = line.text; // the last PCL line of a failed extract() says why
+    } else {
+      const py::object warn = py::module_::import("warnings").attr("warn");
+      warn(line.text, py::module_::import("builtins").attr("RuntimeWarning"), 1);
+    }
+  }
+  if (segments.empty())
+    throw py::value_error(error.empty() ? "the segmentation failed" : error);
+
+  const auto labeled = seg_.getLabeledCloud();
+  labels_.resize(labeled->size());
+  for (std::size_t i = 0; i < labeled->size(); ++i)
+    labels_[i] = static_cast<std::int32_t>((*labeled)[i].label);
+  times_ = seg_.getPhaseTimes();
+  if (analyses_ == analyses_before) // the kept analysis: its phases cost nothing this time
+    times_.knn = times_.centrality = times_.supernodes = times_.refinement = 0.0;
+  have_result_ = true;
+  return labels();
+}
+
+void Segmenter::requireResult() const {
+  checkIdle();
+  if (!have_result_)
+    throw std::runtime_error("no result: call segment(points) first");
+  if (!seg_.getAnalysis())
+    throw std::runtime_error("no result: an analysis parameter changed since the last "
+                             "segment(); call segment() again");
+}
+
+py::array_t<std::int32_t> Segmenter::labels() const {
+  requireResult();
+  return toArray(labels_);
+}
+
+py::array_t<float> Segmenter::centrality() const {
+  requireResult();
+  return toArray(seg_.getCentrality());
+}
+
+py::array_t<std::int32_t> Segmenter::supernodeLabels(bool refined) const {
+  requireResult();
+  const std::vector<int> label = seg_.getSupernodeLabels(refined);
+  return toArray(std::vector<std::int32_t>(label.begin(), label.end()));
+}
+
+py::array_t<std::int64_t> Segmenter::localMaxima() const {
+  requireResult();
+  return indexArray(seg_.getLocalMaxima());
+}
+
+py::array_t<std::int64_t> Segmenter::saddles() const {
+  requireResult();
+  return indexArray(seg_.getSaddles());
+}
+
+py::dict Segmenter::hierarchy() const {
+  requireResult();
+  const pcl_ncut_seg::Hierarchy& h = seg_.getHierarchy();
+  const std::size_t m = h.nodes.size(), l = seg_.getNumberOfSupernodes(true);
+  const std::size_t columns = seg_.getSupernodeGraph().num_vertices;
+  const std::vector<std::uint32_t>& supernode_segment = seg_.result().supernode_segment;
+  py::array_t<std::int32_t> parent(m), left(m), right(m), segment(m);
+  py::array_t<double> ncut(m);
+  py::array_t<bool> vertices({m, columns});
+  auto pa = parent.mutable_unchecked<1>(), le = left.mutable_unchecked<1>();
+  auto ri = right.mutable_unchecked<1>(), se = segment.mutable_unchecked<1>();
+  auto nc = ncut.mutable_unchecked<1>();
+  auto ve = vertices.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < m; ++i) {
+    const pcl_ncut_seg::Hierarchy::Node& node = h.nodes[i];
+    const auto k = static_cast<py::ssize_t>(i);
+    pa(k) = node.parent;
+    le(k) = node.left;
+    ri(k) = node.right;
+    nc(k) = node.has_split ? node.ncut : std::numeric_limits<double>::quiet_NaN();
+    se(k) = 0;
+    for (std::size_t c = 0; c < columns; ++c)
+      ve(k, static_cast<py::ssize_t>(c)) = false;
+    for (std::uint32_t v : node.vertices) {
+      ve(k, v) = true;
+      if (node.left < 0 && v >= l && v - l < supernode_segment.size())
+        se(k) = static_cast<std::int32_t>(supernode_segment[v - l] + 1);
+    }
+  }
+  py::dict d;
+  d["parent"] = parent;
+  d["left"] = left;
+  d["right"] = right;
+  d["ncut"] = ncut;
+  d["vertices"] = vertices;
+  d["segment"] = segment;
+  return d;
+}
+
+py::array_t<std::int32_t> Segmenter::supernodeSegments() const {
+  requireResult();
+  std::vector<std::int32_t> out;
+  for (std::uint32_t s : seg_.result().supernode_segment)
+    out.push_back(static_cast<std::int32_t>(s + 1));
+  return toArray(out);
+}
+
+py::dict Segmenter::supernodeGraph() const {
+  requireResult();
+  const pcl_ncut_seg::WeightedGraph& g = seg_.getSupernodeGraph();
+  const std::size_t e = g.edges.size();
+  py::array_t<std::int64_t> edges({e, std::size_t(2)});
+  py::array_t<double> weights(e);
+  auto ed = edges.mutable_unchecked<2>();
+  auto we = weights.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < e; ++i) {
+    const auto k = static_cast<py::ssize_t>(i);
+    ed(k, 0) = g.edges[i].a;
+    ed(k, 1) = g.edges[i].b;
+    we(k) = g.edges[i].w;
+  }
+  py::dict d;
+  d["num_vertices"] = g.num_vertices;
+  d["edges"] = edges;
+  d["weights"] = weights;
+  return d;
+}
+
+std::size_t Segmenter::numSegments() const {
+  requireResult();
+  return seg_.result().num_segments;
+}
+
+std::size_t Segmenter::numSupernodes(bool refined) const {
+  requireResult();
+  return seg_.getNumberOfSupernodes(refined);
+}
+
+py::dict Segmenter::phaseTimes() const {
+  requireResult();
+  py::dict d;
+  d["knn"] = times_.knn;
+  d["centrality"] = times_.centrality;
+  d["supernodes"] = times_.supernodes;
+  d["refinement"] = times_.refinement;
+  d["hierarchy"] = times_.hierarchy;
+  d["points"] = times_.points;
+  d["total"] = times_.total();
+  return d;
+}
+
+std::string Segmenter::repr() const {
+  // The parameters that differ from the defaults, as keywords.
+  std::ostringstream s;
+  s << "pcl_ncut_seg.Segmenter(";
+  const pcl_ncut_seg::Parameters defaults;
+  bool first = true;
+  for (const pcl_ncut_seg::ParameterInfo* r : keywordOrder()) {
+    if (r->get(seg_.getParameters()) == r->get(defaults))
+      continue;
+    s << (first ? "" : ", ") << r->name << "="
+      << py::repr(parameterObject(*r, seg_.getParameters())).cast<std::string>();
+    first = false;
+  }
+  s << ")";
+  return s.str();
+}
+
+} // namespace pcl_ncut_seg_python

@@ -1,0 +1,133 @@
+"""Segmenter: every parameter by its name, re-cuts that keep the expensive stage."""
+import numpy as np
+import pytest
+
+import pcl_ncut_seg
+import shapes
+
+TABLE = pcl_ncut_seg.parameter_table()
+
+# Per parameter, a valid value other than its default (every row must have one).
+OTHER = {
+    "k": 11, "bridge_gap": None, "centrality_samples": 30, "centrality": "exact",
+    "representatives": 500, "crossing_fraction": 0.25, "area_fraction": 0.02,
+    "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
+    "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
+    "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
+    "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
+    "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
+    "splits": 50, "min_segment_fraction": 0.1, "max_segments": 4, "gap_floor": 0.01,
+    "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0,
+    "threads": 1,
+}
+
+
+@pytest.fixture(scope="module")
+def points():
+    return shapes.limbs(2000, seed=5)
+
+
+def test_every_parameter_is_an_attribute_of_its_name():
+    seg = pcl_ncut_seg.Segmenter()
+    names = [row["name"] for row in TABLE]
+    assert sorted(seg.parameters) == sorted(names)
+    assert set(OTHER) == set(names)
+    for row in TABLE:
+        name = row["name"]
+        assert getattr(seg, name) == row["default"] == seg.get(name)
+        for alias in row["aliases"]:
+            assert seg.get(alias) == row["default"]
+        assert row["help"] in getattr(pcl_ncut_seg.Segmenter, name).__doc__
+    # Python types: None for off/auto, bool for switches, int, float, str for choices.
+    assert seg.k == 10 and isinstance(seg.k, int)
+    assert seg.threshold == 0.1 and isinstance(seg.threshold, float)
+    assert seg.crossing_fraction == 0.3  # a float field, read back as the same decimal
+    assert seg.crease_cut is None and seg.centrality_samples is None
+    assert seg.cad is False and seg.centrality == "fast"
+
+
+def test_setting_each_parameter_by_attribute_keyword_and_alias():
+    for row in TABLE:
+        name, value = row["name"], OTHER[row["name"]]
+        seg = pcl_ncut_seg.Segmenter()
+        setattr(seg, name, value)
+        assert getattr(seg, name) == value, name
+        assert pcl_ncut_seg.Segmenter(**{name: value}).get(name) == value
+        for alias in row["aliases"]:
+            assert pcl_ncut_seg.Segmenter(**{alias: value}).get(name) == value
+        if row["off"]:
+            seg.set(**{name: None})
+            assert getattr(seg, name) is None
+            seg.set(**{name: row["off"]})
+            assert getattr(seg, name) is None
+    assert pcl_ncut_seg.Segmenter(segments=4).stopping == "count"  # as the tool's -segments
+
+
+def test_parameters_given_back_as_keywords_set_the_same():
+    for keywords in ({}, {"paper": True}, {"segments": 4}, {"stopping": "largest_gap"},
+                     {"segments": 4, "stopping": "threshold"},
+                     {"paper": True, "segments": 3, "threshold": 0.3}, dict(OTHER, cad=False)):
+        seg = pcl_ncut_seg.Segmenter(**keywords)
+        assert pcl_ncut_seg.Segmenter(**seg.parameters).parameters == seg.parameters
+        assert eval(repr(seg), {"pcl_ncut_seg": pcl_ncut_seg}).parameters == seg.parameters
+    for paper in (False, True):
+        d = pcl_ncut_seg.default_parameters(paper=paper)
+        assert pcl_ncut_seg.Segmenter(**d).parameters == d
+        assert pcl_ncut_seg.Segmenter(paper=paper).parameters == d
+
+
+def test_set_is_all_or_nothing_and_repr_shows_changes():
+    seg = pcl_ncut_seg.Segmenter(k=12, threshold=0.2)
+    before = seg.parameters
+    with pytest.raises(ValueError):
+        seg.set(threshold=0.3, k=1)
+    with pytest.raises(ValueError):
+        seg.k = 0
+    assert seg.parameters == before
+    assert repr(seg) == "pcl_ncut_seg.Segmenter(k=12, threshold=0.2)"
+    seg.set(paper=False)
+    assert seg.parameters == pcl_ncut_seg.default_parameters()
+    seg = pcl_ncut_seg.Segmenter(threads=1)
+    seg.set(paper=True)
+    assert seg.threads == 1  # the presets leave the threads alone
+    assert seg.centrality == "exact" and seg.stopping == "threshold"
+
+
+def test_a_recut_keeps_the_expensive_stage(points):
+    seg = pcl_ncut_seg.Segmenter()
+    first = seg.segment(points)
+    assert seg.analysis_count == 1
+    assert seg.phase_times["knn"] > 0 and seg.phase_times["centrality"] > 0
+    analysis = seg.get_centrality()
+    # Every cut stage at once: similarity, stopping, boundary.
+    cut = dict(beta=3.0, alpha1=1.5, threshold=0.05, segments=4, boundary_crease=1.0)
+    recut = seg.segment(**cut)
+    assert seg.analysis_count == 1
+    times = seg.phase_times
+    assert times["knn"] == times["centrality"] == times["supernodes"] == times["refinement"] == 0
+    assert times["hierarchy"] > 0
+    assert np.array_equal(seg.get_centrality(), analysis)
+    assert recut.max() == 4 and not np.array_equal(recut, first)
+    # The same labels as from scratch.
+    assert np.array_equal(recut, pcl_ncut_seg.segment(points, **cut))
+    # An analysis parameter: the results are gone until the next segment(), which recomputes.
+    seg.k = 12
+    with pytest.raises(RuntimeError, match="call segment"):
+        seg.get_labels()
+    assert np.array_equal(seg.segment(), pcl_ncut_seg.segment(points, k=12, **cut))
+    assert seg.analysis_count == 2 and seg.phase_times["knn"] > 0
+    # New points: a new analysis.
+    seg.segment(points[:1500])
+    assert seg.analysis_count == 3 and seg.num_points == 1500
+
+
+def test_which_parameters_recompute_the_analysis(points):
+    # A change recomputes the expensive stage exactly when the table puts the parameter in an
+    # analysis stage.
+    small = points[:800]
+    for row in TABLE:
+        seg = pcl_ncut_seg.Segmenter(segments=3)
+        seg.segment(small)
+        seg.set(**{row["name"]: OTHER[row["name"]]})
+        seg.segment()
+        assert seg.analysis_count == (2 if row["analysis"] else 1), row["name"]
