@@ -305,9 +305,9 @@ TEST_F(ToolTest, HelpListsEveryOptionWithItsDefault) {
   const ToolRun r = run("-h");
   EXPECT_EQ(r.status, 0);
   for (const char* option :
-       {"-k", "-cen_samples", "-crossing", "-area", "-height", "-beta", "-alpha1", "-alpha2",
-        "-threshold", "-segments", "-splits", "-threads", "-paper", "-samples", "-seed", "-add",
-        "-binary", "-split", "-quiet"}) {
+       {"-k",      "-cen_samples", "-crossing", "-area",   "-height",  "-beta",  "-alpha1",
+        "-alpha2", "-threshold",   "-segments", "-splits", "-threads", "-paper", "-samples",
+        "-seed",   "-add",         "-ascii",    "-binary", "-split",   "-quiet"}) {
     bool found = false;
     for (const std::string& line : lines(r.out))
       if (line.find(std::string(option) + " ") != std::string::npos &&
@@ -587,12 +587,14 @@ TEST_F(ToolTest, ProgressBarOnATerminalOnly) {
   EXPECT_TRUE(fs::exists(dir_ / "out2.pcd"));
 }
 
-TEST_F(ToolTest, AsciiByDefaultBinaryOnRequest) {
+TEST_F(ToolTest, BinaryByDefaultAsciiOnRequest) {
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
-  ASSERT_EQ(run("shape.pcd ascii.pcd -segments 3 -quiet").status, 0);
-  ASSERT_EQ(run("shape.pcd binary.pcd -segments 3 -quiet -binary").status, 0);
-  EXPECT_EQ(pcdDataType(dir_ / "ascii.pcd"), "ascii");
+  ASSERT_EQ(run("shape.pcd binary.pcd -segments 3 -quiet").status, 0);
+  ASSERT_EQ(run("shape.pcd ascii.pcd -segments 3 -quiet -ascii").status, 0);
+  ASSERT_EQ(run("shape.pcd old.pcd -segments 3 -quiet -binary").status, 0); // older scripts
   EXPECT_EQ(pcdDataType(dir_ / "binary.pcd"), "binary");
+  EXPECT_EQ(pcdDataType(dir_ / "ascii.pcd"), "ascii");
+  EXPECT_EQ(readText(dir_ / "old.pcd"), readText(dir_ / "binary.pcd"));
   Output a, b;
   ASSERT_TRUE(readOutput(dir_ / "ascii.pcd", a));
   ASSERT_TRUE(readOutput(dir_ / "binary.pcd", b));
@@ -603,6 +605,7 @@ TEST_F(ToolTest, AsciiByDefaultBinaryOnRequest) {
     ASSERT_EQ(a.cloud[i].label, b.cloud[i].label);
     ASSERT_EQ(a.cloud[i].rgba & 0xFFFFFFu, b.cloud[i].rgba & 0xFFFFFFu);
   }
+  expectCleanFailure("shape.pcd both.pcd -segments 3 -ascii -binary", "-ascii");
 }
 
 TEST_F(ToolTest, AddKeepsEveryInputFieldAndAddsLabel) {
@@ -615,7 +618,7 @@ TEST_F(ToolTest, AddKeepsEveryInputFieldAndAddsLabel) {
     input.push_back(q);
   }
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "intensity.pcd").string(), input), 0);
-  const ToolRun r = run("intensity.pcd out.pcd -segments 3 -add -binary");
+  const ToolRun r = run("intensity.pcd out.pcd -segments 3 -add");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   pcl::PCLPointCloud2 blob;

@@ -38,7 +38,12 @@ std::vector<Flag> toolFlags() {
   append(table,
          {switchFlag("-add", "keep every field of the input and add label (instead of writing x "
                              "y z rgb label)"),
-          switchFlag("-binary", "write binary PCD files instead of ASCII"),
+          switchFlag("-ascii", "write ASCII PCD files (with enough digits to read back every "
+                               "value exactly) instead of binary ones"),
+          switchFlag("-binary",
+                     "binary PCD files, the default: changes nothing, accepted for "
+                     "older scripts",
+                     ""),
           textFlag("-split", "PREFIX",
                    "also write each segment to PREFIX_<label>.pcd (same fields)", "off")});
   append(table, commonFlags());
@@ -48,8 +53,8 @@ std::vector<Flag> toolFlags() {
 void printHelp(const char* name) {
   print_info("Syntax is: %s [input] [output.pcd] <options>\n", name);
   print_info("Segments a point-sampled surface into parts (Yamazaki et al., \"Segmenting "
-             "Point-sampled Surfaces\") and\nwrites the points as a PCD with fields "
-             "x y z rgb label (label 1..t per segment, 0 for points in no segment).\n");
+             "Point-sampled Surfaces\") and\nwrites the points as a binary PCD (-ascii: text) with "
+             "fields x y z rgb label (label 1..t per\nsegment, 0 for points in no segment).\n");
   print_info("The input is a point cloud (.pcd, .ply) or a mesh (.off, .obj, .ply with faces); a "
              "mesh becomes one point\nper face centroid, or -samples N points sampled uniformly "
              "by area.\n");
@@ -190,7 +195,7 @@ struct Command {
   std::string input_path, output_path, split_prefix; ///< split_prefix: "" for no -split
   bool bundled = false;                              ///< the bundled model, for no input
   bool keep_fields = false;                          ///< -add
-  PcdEncoding encoding = PcdEncoding::Ascii;
+  PcdEncoding encoding = PcdEncoding::Binary;
   MeshSampling sampling;
 };
 
@@ -199,6 +204,10 @@ bool readCommand(const Flags& flags, Command& cmd) {
   if (flags.files.size() > 2) {
     fail("too many file arguments: expected [input] [output.pcd], got '" + flags.files[2] +
          "' as a third");
+    return false;
+  }
+  if (flags.has("-ascii") && flags.has("-binary")) {
+    fail("give either -ascii or -binary (the default), not both");
     return false;
   }
   cmd.bundled = flags.files.empty();
@@ -217,7 +226,7 @@ bool readCommand(const Flags& flags, Command& cmd) {
   }
   cmd.split_prefix = flags.has("-split") ? flags.text("-split") : "";
   cmd.keep_fields = flags.has("-add");
-  cmd.encoding = flags.has("-binary") ? PcdEncoding::Binary : PcdEncoding::Ascii;
+  cmd.encoding = flags.has("-ascii") ? PcdEncoding::Ascii : PcdEncoding::Binary;
   cmd.sampling = meshSampling(flags);
   return true;
 }
