@@ -7,6 +7,7 @@
  *
  *   pcl_ncut_seg_bench_concavity MODEL.off N [--threads T] [--repeat R] [--dump F] [--compare F]
  */
+#include <pcl_ncut_seg/core/analysis_stages.h>
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/pipeline.h>
@@ -140,9 +141,10 @@ int main(int argc, char** argv) {
   pcl_ncut_seg::CsrGraph graph = pcl_ncut_seg::buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
   std::vector<std::uint32_t>().swap(knn);
   pcl_ncut_seg::PhaseTimes times;
-  pcl_ncut_seg::AnalysisParams params;
-  params.num_threads = static_cast<unsigned>(std::max(threads, 0));
-  const pcl_ncut_seg::Analysis analysis = pcl_ncut_seg::analyze(std::move(graph), params, times);
+  pcl_ncut_seg::Parameters params;
+  params.execution.num_threads = static_cast<unsigned>(std::max(threads, 0));
+  const pcl_ncut_seg::Analysis analysis =
+      pcl_ncut_seg::featureStages(std::move(graph), params, nullptr, times, nullptr);
   const auto& label = analysis.supernodes.label;
 
   const std::size_t base = startPeakMemory();

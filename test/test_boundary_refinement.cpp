@@ -121,7 +121,7 @@ TEST(BoundaryRefinement, GridBoundaryMovesToTheCrease) {
   for (int p = 0; p < w * h; ++p)
     label[p] = p % w < 20 ? 0 : 1;
   BoundaryParams params;
-  params.band_fraction = 0.3; // 6 columns of each side's 20
+  params.band = 0.3; // 6 columns of each side's 20
   params.crease_weight = 3.0;
   const std::size_t moved = refineBoundaries(graph, radii, crease, params, label, 2);
   EXPECT_EQ(moved, static_cast<std::size_t>(5 * h));
@@ -140,7 +140,7 @@ TEST(BoundaryRefinement, GridBandBoundsTheMove) {
   for (int p = 0; p < w * h; ++p)
     label[p] = p % w < 20 ? 0 : 1;
   BoundaryParams params;
-  params.band_fraction = 0.3;
+  params.band = 0.3;
   params.crease_weight = 3.0;
   refineBoundaries(graph, radii, crease, params, label, 2);
   std::size_t in_zero = 0;
@@ -158,12 +158,12 @@ TEST(BoundaryRefinement, OffOrOneSegmentChangesNothing) {
     label[p] = p % 20 < 7 ? 0 : 1;
   const std::vector<std::uint32_t> before = label;
   BoundaryParams off;
-  off.band_fraction = 0.0;
+  off.band.reset();
   EXPECT_EQ(refineBoundaries(graph, radii, {}, off, label, 2), 0u);
   EXPECT_EQ(label, before);
   std::vector<std::uint32_t> one(100, 0);
   BoundaryParams on;
-  on.band_fraction = 0.5;
+  on.band = 0.5;
   EXPECT_EQ(refineBoundaries(graph, radii, {}, on, one, 1), 0u);
   EXPECT_EQ(one, std::vector<std::uint32_t>(100, 0));
 }

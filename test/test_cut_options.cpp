@@ -70,11 +70,11 @@ WeightedGraph memberGraph(std::size_t l, const std::vector<WeightedGraph::Edge>&
 TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
   SimilarityParams p;
   p.normalize_width = false;
-  p.connect_all_adjacent = false; // the paper
+  p.adjacency = Adjacency::Trees; // the paper's saddle edges, and the trees joined
   const WeightedGraph saddles_only =
       buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
   EXPECT_EQ(weight(saddles_only, m(3, 0), m(3, 2)), -1) << "the paper: a tree of saddle edges";
-  p.connect_all_adjacent = true;
+  p.adjacency = Adjacency::All;
   p.adjacent_share = 0.0;
   const WeightedGraph all = buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
   EXPECT_EQ(all.edges.size(), saddles_only.edges.size() + 1);
@@ -83,13 +83,13 @@ TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
   EXPECT_NEAR(weight(all, m(3, 0), m(3, 1)), weight(saddles_only, m(3, 0), m(3, 1)), 1e-15);
   // s0 and s2 touch with conn 1; each has total contact 3: joined up to a share of 1/3.
   p.adjacent_share = 0.3;
-  EXPECT_GT(weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
-                   m(3, 2)),
-            0);
+  EXPECT_GT(
+      weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0), m(3, 2)),
+      0);
   p.adjacent_share = 0.5;
-  EXPECT_EQ(weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
-                   m(3, 2)),
-            -1);
+  EXPECT_EQ(
+      weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0), m(3, 2)),
+      -1);
   // Member masses are the supernodes' feature areas.
   ASSERT_EQ(all.mass.size(), 6u);
   EXPECT_EQ(all.mass[0], 0.0);
@@ -99,8 +99,8 @@ TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
 TEST(MinSegmentFraction, RefusesASplitThatLeavesASmallSide) {
   // Two heavy members joined strongly, and a light member hanging by a weak edge.
   const WeightedGraph g = memberGraph(3, {{0, 1, 1.0}, {1, 2, 1e-3}}, {10, 10, 0.5});
-  CutParams p;
-  p.largest_gap = false; // the paper's recursive bisection
+  StoppingParams p;
+  p.rule = StoppingRule::Threshold; // the paper's recursive bisection
   p.threshold = 0.1;
   const Hierarchy paper = buildHierarchy(g, 3, p);
   EXPECT_EQ(paper.leaves().size(), 2u) << "the light member is cut off";
@@ -120,11 +120,11 @@ TEST(LargestGap, StopsWhereTheNCutJumps) {
   // two cheap splits, then every further split costs orders of magnitude more.
   const WeightedGraph g =
       memberGraph(6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
-  CutParams p;
-  p.largest_gap = false;
+  StoppingParams p;
+  p.rule = StoppingRule::Threshold;
   p.threshold = 2.0; // the paper's rule splits everything that can be split
   EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 6u);
-  p.largest_gap = true;
+  p.rule = StoppingRule::LargestGap;
   p.gap_floor = 1e-3;
   const Hierarchy h = buildHierarchy(g, 6, p);
   ASSERT_EQ(h.leaves().size(), 3u);
@@ -143,9 +143,9 @@ TEST(LargestGap, KeepsAtLeastOneSplitWithinTheThreshold) {
   // A uniform chain: every split costs about the same, so the gap rule has no jump to find;
   // it still makes the first split (and never more than max_segments parts).
   const WeightedGraph g = memberGraph(4, {{0, 1, 1.0}, {1, 2, 1.0}, {2, 3, 1.0}});
-  CutParams p;
+  StoppingParams p;
   p.threshold = 2.0;
-  p.largest_gap = true;
+  p.rule = StoppingRule::LargestGap;
   const std::size_t leaves = buildHierarchy(g, 4, p).leaves().size();
   EXPECT_GE(leaves, 2u);
   EXPECT_LE(leaves, 4u);

@@ -90,9 +90,8 @@ TEST(FlatPatches, Eq9LeavesOutTheWidthRatioBetweenFlatSupernodes) {
       {{0, 0}, 4.0}, {{1, 1}, 2.0}, {{2, 2}, 8.0}, {{0, 2}, 3.0}, {{1, 2}, 1.0}};
   SimilarityParams p;
   p.normalize_width = false;
-  p.connect_adjacent_trees = false;
-  p.connect_all_adjacent = false;
-  p.concavity_weight = 0.0;
+  p.adjacency = Adjacency::Saddles;
+  p.concavity.reset();
   // m1 - m2: d1 = 0.02 / 0.03, d2 = 1 - 1/3; alpha_12 = 0.5 * 100 / 200 in the paper.
   const double d1 = 2.0 / 3.0, d2 = 2.0 / 3.0;
   p.flat_elongation = 0.0; // the paper

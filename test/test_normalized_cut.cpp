@@ -121,15 +121,16 @@ TEST(Hierarchy, ThresholdAndNumberOfSegments) {
   WeightedGraph g;
   g.num_vertices = 6;
   g.edges = {{0, 3, 1}, {1, 4, 1}, {2, 5, 1}, {3, 4, 1}, {4, 5, 0.01}};
-  CutParams p;
+  StoppingParams p;
   p.threshold = 0.05;
   Hierarchy h = buildHierarchy(g, 3, p);
   ASSERT_EQ(h.leaves().size(), 2u);
   EXPECT_LE(h.nodes[0].ncut, 0.05);
-  p.num_segments = 3;
+  p.rule = StoppingRule::Count;
+  p.segments = 3;
   h = buildHierarchy(g, 3, p);
   EXPECT_EQ(h.leaves().size(), 3u);
-  p.num_segments = 10; // more than there are supernodes: stops at one per supernode
+  p.segments = 10; // more than there are supernodes: stops at one per supernode
   h = buildHierarchy(g, 3, p);
   EXPECT_EQ(h.leaves().size(), 3u);
 }

@@ -100,10 +100,10 @@ TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
   // splits (three parts).
   const WeightedGraph g =
       memberGraph(6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
-  CutParams p;
+  StoppingParams p;
   p.threshold = 2.0;
   p.gap_floor = 1e-3;
-  p.neck_exponent = 0.0;
+  p.rule = StoppingRule::LargestGap;
   int calls = 0;
   double neck_value = 1.0;
   const SplitNeckFn neck = [&](const std::vector<std::uint32_t>& v1,
@@ -115,6 +115,7 @@ TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
   };
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
   EXPECT_EQ(calls, 0) << "exponent 0: the largest gap, no neck measured";
+  p.rule = StoppingRule::ShortCut;
   p.neck_exponent = 3.0;
   // Short boundaries: the cheap splits are worth it, the dear ones (NCut about 1) are not.
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
@@ -133,7 +134,8 @@ TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
   neck_value = 10.0;
   EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 3u);
   // A given number of segments ignores the rule.
-  p.num_segments = 4;
+  p.rule = StoppingRule::Count;
+  p.segments = 4;
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 4u);
 }
 

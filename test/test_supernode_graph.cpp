@@ -48,8 +48,7 @@ double weight(const WeightedGraph& g, std::uint32_t a, std::uint32_t b) {
 TEST(SupernodeGraph, Weights7And9ByHand) {
   SimilarityParams p; // beta 2, alpha1 2, alpha2 0.5
   p.normalize_width = false;
-  p.connect_adjacent_trees = false;
-  p.connect_all_adjacent = false; // the paper's graph
+  p.adjacency = Adjacency::Saddles; // the paper's graph
   const WeightedGraph g = buildSupernodeGraph(threeSupernodes(), threeStats(), threeConn(), p);
   EXPECT_EQ(g.num_vertices, 6u);
   EXPECT_EQ(g.edges.size(), 5u); // three r-m, two m-m
@@ -66,8 +65,7 @@ TEST(SupernodeGraph, Weights7And9ByHand) {
 
 TEST(SupernodeGraph, WidthNormalisationMakesWeightsUnitFree) {
   SimilarityParams p;
-  p.connect_adjacent_trees = false;
-  p.connect_all_adjacent = false; // the paper's graph
+  p.adjacency = Adjacency::Saddles;   // the paper's graph
   FeatureStats scaled = threeStats(); // the same shape in units 10x larger
   for (std::size_t i = 0; i < 3; ++i) {
     scaled.height[i] *= 10;
@@ -97,11 +95,9 @@ TEST(SupernodeGraph, AdjacentTreesWithoutSaddleAreJoinedAtTheirStrongestContact)
   st.width = {1, 1, 1};
   const Connectivity conn = {{{0, 1}, 1.0}, {{0, 2}, 5.0}, {{1, 2}, 2.0}};
   SimilarityParams p;
-  p.connect_adjacent_trees = false;
-  p.connect_all_adjacent = false; // the paper's graph
+  p.adjacency = Adjacency::Saddles;                                 // the paper's graph
   EXPECT_EQ(buildSupernodeGraph(sn, st, conn, p).edges.size(), 3u); // r-m only
-  p.connect_adjacent_trees = true;
-  p.connect_all_adjacent = false;
+  p.adjacency = Adjacency::Trees;
   const WeightedGraph g = buildSupernodeGraph(sn, st, conn, p);
   // A maximum spanning forest: {0, 2} then {1, 2}; {0, 1} would close a cycle.
   EXPECT_EQ(g.edges.size(), 5u);

@@ -37,7 +37,6 @@ std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
   return crease;
 }
 
-
 namespace {
 
 /// Connected components of each segment in the graph: per vertex its component (numbered in
@@ -90,7 +89,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
                              const std::vector<std::uint8_t>& crease, const BoundaryParams& params,
                              std::vector<std::uint32_t>& segment, std::size_t num_segments) {
   const std::size_t n = graph.numVertices();
-  if (!(params.band_fraction > 0.0) || num_segments < 2 || n == 0 || segment.size() != n ||
+  if (!params.band || !(*params.band > 0.0) || num_segments < 2 || n == 0 || segment.size() != n ||
       radii.size() != n)
     return 0;
   const bool use_crease =
@@ -170,7 +169,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
       std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
       for (std::size_t i = first_seed; i < touched.size(); ++i)
         queue.emplace(dist[touched[i]], touched[i]);
-      const double cap = params.band_fraction * seg_area[x];
+      const double cap = *params.band * seg_area[x];
       double held = 0.0;
       while (!queue.empty()) {
         const auto [d, p] = queue.top();

@@ -2,6 +2,9 @@
 // and the face-orientation similarity of supernodes.
 #include <pcl_ncut_seg/core/cad.h>
 
+#include <pcl_ncut_seg/core/analysis_stages.h>
+#include <pcl_ncut_seg/core/refinement.h>
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -223,10 +226,11 @@ faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std
 
 WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
                                      const Connectivity& conn, const Connectivity& face_angles,
-                                     const SimilarityParams& params, double face_angle) {
+                                     const SimilarityParams& params) {
+  const double face_angle = params.face_angle;
   // The r_i - m_i edges of eq. (7) as in Sec. 5.1; the member edges are replaced.
   SimilarityParams base = params;
-  base.connect_adjacent_trees = false;
+  base.adjacency = Adjacency::Saddles; // the member edges are replaced below
   WeightedGraph g = buildSupernodeGraph(supernodes, stats, conn, base);
   const auto l = static_cast<std::uint32_t>(supernodes.size());
   g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
@@ -441,7 +445,9 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
 }
 
 Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
-                    const AnalysisParams& params, const CadParams& cad, PhaseTimes& times) {
+                    const Parameters& params, const std::uint32_t* tie_rank, PhaseTimes& times,
+                    const PhaseProgressFn& progress) {
+  const CadParams& cad = params.cad;
   const auto start = std::chrono::steady_clock::now();
   const std::vector<float> smoothed = smoothNormals(graph, normals, cad.smoothing_iterations);
   const std::vector<bool> ridge = ridgePoints(graph, smoothed, cad.ridge_angle);
@@ -449,7 +455,7 @@ Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normal
   CsrGraph transformed = transformGraph(graph, phi, cad.shrink, cad.stretch);
   times.knn += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  Analysis a = analyze(std::move(transformed), params, times);
+  Analysis a = featureStages(std::move(transformed), params, tie_rank, times, progress);
   const auto before_angles = std::chrono::steady_clock::now();
   a.cad = true;
   // Faces end at ridges: no supernode crosses one (Sec. 7, "ridges to feature boundaries").
@@ -458,7 +464,6 @@ Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normal
   a.supernodes = splitAtRidges(graph, xyz, ridge, a.supernodes.label, min_points);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
-  a.face_angle = cad.face_angle;
   a.face_angles = faceContactAngles(a.graph, xyz, a.supernodes.label, ridge);
   times.refinement +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - before_angles).count();

@@ -13,6 +13,9 @@
 namespace pcl_ncut_seg {
 
 namespace {
+/// Short-cut rule: NCuts below this count as this (no worth grows without bound).
+constexpr double kNeckFloor = 1e-3;
+
 double ratio(double cut, double volume) {
   if (volume > 0.0)
     return cut / volume;
@@ -213,7 +216,7 @@ std::vector<int> Hierarchy::leaves() const {
 }
 
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
-                         const CutParams& params, const SplitNeckFn& split_neck) {
+                         const StoppingParams& params, const SplitNeckFn& split_neck) {
   Hierarchy h;
   if (graph.num_vertices == 0)
     return h;
@@ -257,11 +260,11 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
       split(best);
     }
   };
-  if (params.num_segments > 0) {
-    bestFirst(params.num_segments, std::numeric_limits<double>::infinity(), nullptr);
-  } else if (params.largest_gap) {
+  if (params.rule == StoppingRule::Count) {
+    bestFirst(params.segments, std::numeric_limits<double>::infinity(), nullptr);
+  } else if (params.rule == StoppingRule::LargestGap || params.rule == StoppingRule::ShortCut) {
     std::vector<double> ncuts, necks;
-    const bool short_cut = params.neck_exponent > 0.0 && split_neck;
+    const bool short_cut = params.rule == StoppingRule::ShortCut && split_neck;
     bestFirst(std::max(params.max_segments, 1), params.threshold, &ncuts,
               short_cut ? &necks : nullptr);
     // Keep the first j splits, j >= 1, where the next split costs the most more than the
@@ -280,7 +283,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
       }
     }
     if (short_cut) // the short-cut rule instead of the largest jump (core/short_cut.h)
-      keep = shortCutKeep(ncuts, necks, params.neck_exponent, params.neck_bound, params.neck_floor);
+      keep = shortCutKeep(ncuts, necks, params.neck_exponent, params.neck_bound, kNeckFloor);
     if (keep < ncuts.size()) {
       // Rebuild with exactly `keep` splits: the best-first order is deterministic.
       std::vector<std::uint32_t> root = std::move(h.nodes[0].vertices);
@@ -291,16 +294,15 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
     }
   } else {
     // Recursive bisection until NCut exceeds the threshold.
-    const bool use_mass =
-        params.min_segment_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
+    const double min_fraction = params.min_segment_fraction.value_or(0.0);
+    const bool use_mass = min_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
     auto mass = [&](const std::vector<std::uint32_t>& vertices) {
       double m = 0.0;
       for (std::uint32_t v : vertices)
         m += graph.mass[v];
       return m;
     };
-    const double min_mass =
-        use_mass ? params.min_segment_fraction * mass(h.nodes[0].vertices) : 0.0;
+    const double min_mass = use_mass ? min_fraction * mass(h.nodes[0].vertices) : 0.0;
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const int i = stack.back();

@@ -1,115 +1,141 @@
 #include <pcl_ncut_seg/core/pipeline.h>
 
+#include <pcl_ncut_seg/core/analysis_stages.h>
 #include <pcl_ncut_seg/core/cad.h>
-#include <pcl_ncut_seg/core/short_cut.h>
+#include <pcl_ncut_seg/core/cut_stages.h>
+#include <pcl_ncut_seg/core/knn.h>
+#include <pcl_ncut_seg/core/morton.h>
+#include <pcl_ncut_seg/core/stopwatch.h>
+#include <pcl_ncut_seg/core/threads.h>
 
-#include <chrono>
-#include <memory>
+#include <algorithm>
 
 namespace pcl_ncut_seg {
-namespace {
-class Stopwatch {
-public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - start_).count();
-    start_ = now;
-    return s;
-  }
 
-private:
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
+CutNeeds cutNeeds(const Parameters& params) {
+  CutNeeds needs;
+  needs.concavity = !params.cad.enabled && params.similarity.concavity.has_value();
+  needs.crease = !params.cad.enabled && params.boundary.band.has_value();
+  return needs;
+}
+
+bool serves(const Analysis& analysis, const Parameters& params) {
+  const CutNeeds needs = cutNeeds(params);
+  return analysis.cad == params.cad.enabled && (!needs.concavity || analysis.has_concavity) &&
+         (!needs.crease || analysis.has_crease);
+}
+
+namespace {
+/// The extensions that measure the surface's bends around the refined supernodes.
+Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph, const Parameters& params,
+                         const std::uint32_t* tie_rank, PhaseTimes& times,
+                         const PhaseProgressFn& progress) {
+  Analysis a = featureStages(std::move(graph), params, tie_rank, times, progress);
+  const CutNeeds needs = cutNeeds(params);
+  const bool creases = params.refinement.crease_split || params.refinement.crease_cut;
+  if (!creases && !needs.concavity && !needs.crease)
+    return a;
+  // Measured between the supernodes, like eq. (8): their time counts as refinement time.
+  Stopwatch clock;
+  const SurfaceBends bends = surfaceBends(a.graph, xyz.data(), params.execution.num_threads);
+  if (creases)
+    creaseStage(a, xyz.data(), bends, params);
+  contactStage(a, xyz.data(), bends, needs, params.execution.num_threads);
+  times.refinement += clock.lap();
+  return a;
+}
 } // namespace
 
-Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times) {
-  Analysis a;
-  a.graph = std::move(graph);
-  const auto report = [&params](const char* phase, double fraction) {
-    if (params.progress)
-      params.progress(phase, fraction);
-  };
-  ProgressFn centrality_progress;
-  if (params.progress)
-    centrality_progress = [&params](double fraction) { params.progress("Cen", fraction); };
+Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
+                 const PhaseProgressFn& progress) {
   Stopwatch clock;
-  report("Cen", 0.0);
-  const std::uint32_t* rank = params.tie_rank.empty() ? nullptr : params.tie_rank.data();
-  a.centrality = params.centrality_mode == CentralityMode::Exact
-                     ? computeCentrality(a.graph, params.num_samples, params.num_threads, rank,
-                                         centrality_progress)
-                     : computeCoarseCentrality(a.graph, params.num_representatives,
-                                               params.num_samples, params.num_threads, rank,
-                                               centrality_progress);
-  report("Cen", 1.0);
-  times.centrality = clock.lap();
-  report("Snod", 0.0);
-  a.raw_supernodes = extractSupernodes(a.graph, a.centrality.f, params.crossing_fraction);
-  report("Snod", 1.0);
-  times.supernodes = clock.lap();
-  report("LRef", 0.0);
-  a.radii = pointRadii(a.graph, a.centrality.f, params.num_threads);
-  a.supernodes =
-      refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
-  a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
-  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label,
-                                 params.num_threads);
-  report("LRef", 1.0);
-  times.refinement = clock.lap();
+  const std::size_t n = points.xyz.size() / 3;
+  CsrGraph graph = graphStage(points.xyz.data(), n, points.knn.data(), points.k, params.graph,
+                              params.execution.num_threads);
+  std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
+  const CutNeeds needs = cutNeeds(params);
+  const bool keep_xyz = params.cad.enabled || needs.concavity || needs.crease ||
+                        params.refinement.crease_split || params.refinement.crease_cut;
+  if (!keep_xyz)
+    std::vector<float>().swap(points.xyz);
+  times.knn += clock.lap();
+  if (progress)
+    progress("kNN", 1.0);
+  const std::uint32_t* rank = points.order.empty() ? nullptr : points.order.data();
+  Analysis a;
+  if (params.cad.enabled) {
+    // Sec. 7: approximate normals from the caller; their time counts as kNN time (Table 1).
+    const std::vector<float> normals =
+        points.normals ? points.normals(graph) : std::vector<float>(3 * n, 0.0f / 0.0f);
+    times.knn += clock.lap();
+    a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank, times, progress);
+  } else {
+    a = surfaceAnalysis(points.xyz, std::move(graph), params, rank, times, progress);
+  }
+  a.order = std::move(points.order);
   return a;
 }
 
-CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, const CutParams& params,
-              PhaseTimes& times) {
+CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& times) {
   CutResult r;
   Stopwatch clock;
-  const std::size_t l = analysis.supernodes.size();
-  r.graph = analysis.cad ? buildCadSupernodeGraph(analysis.supernodes, analysis.stats,
-                                                  analysis.conn, analysis.face_angles, similarity,
-                                                  analysis.face_angle)
-                         : buildSupernodeGraph(analysis.supernodes, analysis.stats, analysis.conn,
-                                               similarity, &analysis.concavity);
-  SplitNeckFn split_neck;
-  std::unique_ptr<NeckMeasure> necks;
-  if (params.num_segments <= 0 && params.largest_gap && params.neck_exponent > 0.0) {
-    // The short-cut rule measures each split's boundary on the kNN graph (core/short_cut.h).
-    necks = std::make_unique<NeckMeasure>(analysis.graph, analysis.supernodes.label, l);
-    split_neck = [&necks, l](const std::vector<std::uint32_t>& v1,
-                             const std::vector<std::uint32_t>& v2) {
-      std::vector<std::int8_t> side(l, -1);
-      for (std::uint32_t v : v1)
-        if (v >= l)
-          side[v - l] = 0; // member vertex m_i = l + i stands for supernode i (footnote 6)
-      for (std::uint32_t v : v2)
-        if (v >= l)
-          side[v - l] = 1;
-      return necks->neck(side);
-    };
-  }
-  r.hierarchy = buildHierarchy(r.graph, l, params, split_neck);
+  r.graph = similarityStage(analysis, params.similarity);
+  r.hierarchy = hierarchyStage(analysis, r.graph, params.stopping);
   times.hierarchy = clock.lap();
-
-  // Each supernode follows its member vertex m_i (footnote 6); each point its supernode.
-  std::vector<std::uint32_t> leaf_of(l, kNone);
-  const std::vector<int> leaves = r.hierarchy.leaves();
-  for (std::size_t k = 0; k < leaves.size(); ++k)
-    for (std::uint32_t v : r.hierarchy.nodes[leaves[k]].vertices)
-      if (v >= l)
-        leaf_of[v - l] = static_cast<std::uint32_t>(k);
-  std::vector<std::uint32_t> segment_of_leaf(leaves.size(), kNone);
-  const std::vector<std::uint32_t>& label = analysis.supernodes.label;
-  r.point_segment.resize(label.size());
-  for (std::size_t p = 0; p < label.size(); ++p) {
-    std::uint32_t& seg = segment_of_leaf[leaf_of[label[p]]];
-    if (seg == kNone)
-      seg = static_cast<std::uint32_t>(r.num_segments++);
-    r.point_segment[p] = seg;
-  }
-  r.supernode_segment.resize(l);
-  for (std::size_t s = 0; s < l; ++s)
-    r.supernode_segment[s] = segment_of_leaf[leaf_of[s]];
+  labelPoints(analysis, r);
+  boundaryStage(analysis, params.boundary, r);
+  numberSegments(analysis.order, r);
   times.points = clock.lap();
   return r;
+}
+
+PreparedPoints preparePoints(const float* xyz, std::size_t n) {
+  PreparedPoints out;
+  DistinctMortonOrder order = distinctMortonOrder(xyz, n);
+  const std::size_t m = order.point.size();
+  out.raw.resize(3 * m);
+  for (std::size_t v = 0; v < m; ++v)
+    for (std::size_t d = 0; d < 3; ++d) // (no library call per point)
+      out.raw[3 * v + d] = xyz[3 * std::size_t(order.point[v]) + d];
+  // Coordinates relative to the centroid, in double first, so that a model far from the
+  // origin keeps its float precision.
+  double c[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < m; ++i)
+    for (int d = 0; d < 3; ++d)
+      c[d] += out.raw[3 * i + d];
+  for (double& v : c)
+    v /= static_cast<double>(std::max<std::size_t>(m, 1));
+  out.set.xyz.resize(3 * m);
+  for (std::size_t i = 0; i < 3 * m; ++i)
+    out.set.xyz[i] = static_cast<float>(out.raw[i] - c[i % 3]);
+  out.point = std::move(order.point);
+  out.copies = std::move(order.copies);
+  out.set.order = std::move(order.rank);
+  return out;
+}
+
+std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n,
+                                         const Parameters& params) {
+  if (n == 0 || !validate(params))
+    return {};
+  PreparedPoints prepared = preparePoints(xyz, n);
+  const std::size_t m = prepared.point.size();
+  PointSet& set = prepared.set;
+  set.k = std::min<std::size_t>(static_cast<std::size_t>(params.graph.k), m - 1);
+  set.knn.assign(m * std::max<std::size_t>(set.k, 1), kNone);
+  if (set.k > 0)
+    kNearestNeighbours(prepared.raw.data(), m, set.k, usableThreads(params.execution.num_threads),
+                       set.knn.data());
+  std::vector<float>().swap(prepared.raw);
+  PhaseTimes times;
+  const Analysis analysis = analyze(std::move(set), params, times);
+  const CutResult r = cut(analysis, params, times);
+  std::vector<std::uint32_t> label(n);
+  for (std::size_t v = 0; v < m; ++v)
+    label[prepared.point[v]] = r.point_segment[v];
+  for (const auto& [copy, vertex] : prepared.copies)
+    label[copy] = r.point_segment[vertex];
+  return label;
 }
 
 } // namespace pcl_ncut_seg

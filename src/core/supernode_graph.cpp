@@ -9,8 +9,7 @@
 namespace pcl_ncut_seg {
 
 Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<float>& f,
-                                   const std::vector<std::uint32_t>& label,
-                                   unsigned num_threads) {
+                                   const std::vector<std::uint32_t>& label, unsigned num_threads) {
   const std::size_t n = graph.numVertices();
   std::uint32_t l = 0;
   for (std::uint32_t s : label)
@@ -116,9 +115,10 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   // (both lengths). Its width f_a / f_h (eq. 4) is then inflated by a near-zero height: on a
   // plate or a cup wall, neighbouring patches differ in width a hundredfold, and eq. (9) would
   // make their edge exp(-20) or less.
+  const double flat_elongation = params.flat_elongation.value_or(0.0);
   std::vector<bool> flat(l, false);
   for (std::uint32_t s = 0; s < l; ++s)
-    flat[s] = stats.height[s] < params.flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
+    flat[s] = stats.height[s] < flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
 
   g.mass.assign(2 * l, 0.0);
   for (std::uint32_t s = 0; s < l; ++s)
@@ -132,6 +132,7 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   }
   // eq. (9): m_i - m_j
   const double max_dh = static_cast<double>(max_h) - min_h;
+  const double concavity_weight = params.concavity.value_or(0.0);
   auto similarity = [&](std::uint32_t i, std::uint32_t j) {
     const double d1 = max_dh > 0.0 ? std::abs(stats.height[i] - stats.height[j]) / max_dh : 0.0;
     const double d2 = max_pair > 0.0 ? 1.0 - lookup(conn, i, j) / max_pair : 1.0;
@@ -141,9 +142,8 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
         flat[i] && flat[j] ? 1.0 : std::min(width[i], width[j]) / std::max(width[i], width[j]);
     const double alpha_ij = std::max(params.alpha2 * width_ratio, 1e-300);
     // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
-    const double crease = params.concavity_weight > 0.0 && concavity
-                              ? params.concavity_weight * lookup(*concavity, i, j)
-                              : 0.0;
+    const double crease =
+        concavity_weight > 0.0 && concavity ? concavity_weight * lookup(*concavity, i, j) : 0.0;
     return std::max(std::exp(-d1 / params.alpha1 - d2 / alpha_ij - crease), kMinWeight);
   };
   std::vector<std::uint32_t> tree(l);
@@ -160,7 +160,7 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
     g.edges.push_back({l + std::min(i, p), l + std::max(i, p), similarity(i, p)});
     tree[find(i)] = find(p);
   }
-  if (params.connect_all_adjacent) {
+  if (params.adjacency == Adjacency::All) {
     // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child)
     // whose contact is a large enough share of the smaller total contact.
     std::vector<double> contact(l, 0.0);
@@ -179,7 +179,7 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
       tree[find(i)] = find(j);
     }
   }
-  if (params.connect_adjacent_trees) {
+  if (params.adjacency != Adjacency::Saddles) {
     // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
     // apart) would be cut at zero cost: join them where they are most connected point-wise.
     std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;

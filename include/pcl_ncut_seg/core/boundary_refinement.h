@@ -8,6 +8,8 @@
  */
 #pragma once
 
+#include <pcl_ncut_seg/parameters.h>
+
 #include <pcl_ncut_seg/core/csr_graph.h>
 
 #include <cstdint>
@@ -26,18 +28,6 @@ namespace pcl_ncut_seg {
 std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
                                       const std::vector<float>& normals, unsigned num_threads = 0,
                                       double typical_bend = 0.0);
-
-/** \brief Parameters of the boundary refinement. */
-struct BoundaryParams {
-  /// Band (fuzzy region) of each pair of touching segments: the points of both within a
-  /// geodesic distance w of their common boundary, w as large as lets neither segment's side
-  /// of the band hold more than this fraction of the segment's area; in [0, 0.5]; 0 = off.
-  double band_fraction = 0.2;
-  /// Capacity of a kNN edge in the minimum cut: its length (so that a cut's cost approximates
-  /// the boundary's length whatever the sampling density) times exp(-crease_weight c), c the
-  /// edge's concave bend of edgeCreases(); >= 0 (0: the shortest boundary in the band).
-  double crease_weight = 3.0;
-};
 
 /** \brief Recut the boundary of each pair of touching segments (in order of their ids) with a
  * minimum cut over the pair's band on the kNN graph: the segments' points outside the band

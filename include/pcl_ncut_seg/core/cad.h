@@ -7,6 +7,8 @@
  */
 #pragma once
 
+#include <pcl_ncut_seg/parameters.h>
+
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/pipeline.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
@@ -16,15 +18,6 @@
 #include <vector>
 
 namespace pcl_ncut_seg {
-
-/** \brief Parameters of the CAD mode (Sec. 7). */
-struct CadParams {
-  int smoothing_iterations = 3; ///< Laplacian smoothing steps of the approximate normals
-  float ridge_angle = 5.0f;     ///< degrees: mean normal turn to the neighbours on a ridge point
-  float shrink = 0.1f;          ///< length factor of edges between points equidistant from a ridge
-  float stretch = 1.0f;         ///< length factor of edges pointing straight away from a ridge
-  float face_angle = 15.0f;     ///< degrees: angle scale of the face-orientation similarity
-};
 
 /** \brief Laplacian smoothing of unoriented unit normals over the kNN graph (Sec. 7): each step
  * replaces n_p by the normalised sum of n_p and its neighbours' normals, each neighbour's flipped
@@ -85,17 +78,18 @@ faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std
  */
 WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
                                      const Connectivity& conn, const Connectivity& face_angles,
-                                     const SimilarityParams& params, double face_angle);
+                                     const SimilarityParams& params);
 
 /** \brief The expensive stage in CAD mode: smooth the normals, transform the graph (Sec. 7),
- * run Secs. 4.1-4.3 on the transformed graph (analyze()), then measure the face angles between
- * the refined supernodes. The time of the normal smoothing and transformation is added to
+ * run Secs. 4.1-4.3 on the transformed graph (featureStages()), then measure the face angles
+ * between the refined supernodes. The time of the normal smoothing and transformation is added to
  * times.knn, as in the paper's Table 1.
  * \param[in] graph    the kNN graph with Euclidean lengths
  * \param[in] xyz      3 floats per vertex
  * \param[in] normals  3 floats per vertex, approximate normals (any orientation)
  */
 Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
-                    const AnalysisParams& params, const CadParams& cad, PhaseTimes& times);
+                    const Parameters& params, const std::uint32_t* tie_rank, PhaseTimes& times,
+                    const PhaseProgressFn& progress = nullptr);
 
 } // namespace pcl_ncut_seg

@@ -3,6 +3,8 @@
  */
 #pragma once
 
+#include <pcl_ncut_seg/parameters.h>
+
 #include <pcl_ncut_seg/core/supernode_graph.h>
 
 #include <cstdint>
@@ -46,37 +48,12 @@ struct Hierarchy {
   std::vector<int> leaves() const; ///< leaf node ids, in order of their smallest vertex
 };
 
-/** \brief Cut parameters of the hierarchy. */
-struct CutParams {
-  double threshold = 0.1;  ///< split while the best NCut <= threshold
-  int num_segments = 0;    ///< > 0: instead split the lowest-NCut leaf until this many leaves
-  int num_splits = 100;    ///< uniform split values tried per bisection
-  /// Threshold mode only: a split is accepted only if each side holds at least this fraction
-  /// of the total mass (WeightedGraph::mass, feature area); 0 = the paper (no such rule).
-  double min_segment_fraction = 0.0;
-  /// Threshold mode only, an automatic stopping rule: split the lowest-NCut part first (as
-  /// with num_segments) while the NCut is at most the threshold and at most max_segments
-  /// parts exist, then keep the splits up to the largest relative jump of the NCut
-  /// (log scale). The NCut's scale differs from model to model by orders of magnitude; its
-  /// jump does not. false = the paper (recursive bisection while NCut <= threshold).
-  bool largest_gap = true;
-  int max_segments = 20; ///< upper bound on the parts for largest_gap
-  double gap_floor = 3e-3; ///< largest_gap: NCuts below this count as this (no jump among them)
-  /// largest_gap, with a neck measure given to buildHierarchy(): the short-cut rule
-  /// (core/short_cut.h) replaces the largest jump: split j is worth
-  /// log(neck_bound / (max(NCut_j, neck_floor) * max(neck_j, 1)^neck_exponent)) and the
-  /// best-first splits are kept up to the highest running sum of worths. 0 = the largest gap.
-  double neck_exponent = 3.0;
-  double neck_bound = 0.25; ///< short-cut rule: a split is worth making below this weighted NCut
-  double neck_floor = 1e-3; ///< short-cut rule: NCuts below this count as this
-};
-
 /** \brief Per split of the hierarchy, its neck (core/short_cut.h): called with the two sides'
  * vertex ids of G_s. */
 using SplitNeckFn =
     std::function<double(const std::vector<std::uint32_t>&, const std::vector<std::uint32_t>&)>;
 
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
-                         const CutParams& params, const SplitNeckFn& split_neck = nullptr);
+                         const StoppingParams& params, const SplitNeckFn& split_neck = nullptr);
 
 } // namespace pcl_ncut_seg

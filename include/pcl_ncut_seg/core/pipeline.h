@@ -1,18 +1,22 @@
 /*
- * pcl_ncut_seg: the two stages of the segmentation over plain arrays.
- *   analyze(): kNN graph -> centrality (4.1) -> supernodes (4.2) -> refinement (4.3),
- *              computed once per input;
- *   cut():     supernode graph (5.1) -> hierarchy (5.2) -> point segments, cheap to repeat.
+ * pcl_ncut_seg: the whole segmentation over plain arrays, in two stages (the paper's order):
+ *   analyze(): graph (4.1) -> centrality (4.1) -> supernodes (4.2) -> refinement (4.3)
+ *              -> crease splits -> contact concavity and edge creases; in CAD mode (Sec. 7)
+ *              the ridge graph first. Expensive: once per input.
+ *   cut():     supernode graph (5.1) -> hierarchy and stopping rule (5.2) -> point segments
+ *              -> boundary refinement -> numbering. Cheap: repeat it on a kept analysis.
+ * Each stage is a named function of its own file (analysis_stages.h, cut_stages.h and the
+ * files they call); this file only runs them in order. segmentPoints() does everything from
+ * a point array, as the PCL front end does from a cloud.
  */
 #pragma once
 
 #include <pcl_ncut_seg/core/centrality.h>
-#include <pcl_ncut_seg/core/coarse_centrality.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/normalized_cut.h>
-#include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
 #include <pcl_ncut_seg/core/supernodes.h>
+#include <pcl_ncut_seg/parameters.h>
 
 #include <cstdint>
 #include <functional>
@@ -26,62 +30,95 @@ struct PhaseTimes {
   double total() const { return knn + centrality + supernodes + refinement + hierarchy + points; }
 };
 
-/** \brief How the centrality of Sec. 4.1 is computed. */
-enum class CentralityMode {
-  Exact, ///< as the paper: ceil(sqrt(n)) samples, searches over the whole kNN graph
-  Fast   ///< eq. (1) on a coarse graph of representatives, carried back to every point
+/** \brief Progress: a phase of Table 1 ("kNN", "Cen", "Snod", "LRef", "HSeg") and 0 at its
+ * start, 1 at its end, the fraction done in between where known; from the calling thread. */
+using PhaseProgressFn = std::function<void(const char* phase, double fraction)>;
+
+/** \brief Approximate normals for CAD mode: 3 floats per vertex (any orientation; NaN where
+ * unknown), given the symmetric kNN graph. The PCL front end fits them with PCL's estimator
+ * unless the input has normals. */
+using NormalSource = std::function<std::vector<float>(const CsrGraph& graph)>;
+
+/** \brief What analyze() reads: distinct points in the order of the graph's vertices. */
+struct PointSet {
+  std::vector<float> xyz;         ///< 3 floats per vertex, best centred (lengths in float)
+  std::vector<std::uint32_t> knn; ///< k per vertex, nearest first; kNone pads a short row
+  std::size_t k = 0;              ///< neighbours per row of knn
+  /// Per vertex, its rank in the input's order (distinct): ties in the centrality go by it,
+  /// and segments are numbered by their first vertex in it. Empty: the vertex order.
+  std::vector<std::uint32_t> order;
+  NormalSource normals; ///< CAD mode; empty: CAD mode fails (no normals)
 };
 
-struct AnalysisParams {
-  CentralityMode centrality_mode = CentralityMode::Fast;
-  std::size_t num_representatives = 20000; ///< Fast mode: size of the coarse graph
-  std::size_t num_samples = 0;    ///< per component; 0 = ceil(sqrt(n_c))
-  float crossing_fraction = 0.3f; ///< Sec. 4.2 (b)
-  RefinementParams refinement;
-  unsigned num_threads = 0; ///< 0 = all available
-  /// If set, called with a phase ("Cen", "Snod", "LRef") and 0 at its start, 1 at its end,
-  /// and with the fraction done in between where known (from the calling thread only).
-  std::function<void(const char* phase, double fraction)> progress;
-  /// Per vertex, distinct ranks for ties in the centrality (empty: the vertex index); the PCL
-  /// front end passes the input order, so results do not depend on its Morton numbering.
-  std::vector<std::uint32_t> tie_rank;
-};
-
-/** \brief The expensive stage: everything that depends only on the points, k and the
- * parameters above. */
+/** \brief The expensive stage: everything that depends only on the points and the analysis
+ * stages' parameters (and on which extensions the cut asks for, cutNeeds()). */
 struct Analysis {
-  CsrGraph graph;
-  Centrality centrality;
+  CsrGraph graph;            ///< the kNN graph (CAD mode: transformed, Sec. 7)
+  Centrality centrality;     ///< Sec. 4.1
   std::vector<float> radii;  ///< r(p), Sec. 4.3
   Supernodes raw_supernodes; ///< Sec. 4.2, before refinement
-  Supernodes supernodes;     ///< after refinement (Sec. 4.3)
+  Supernodes supernodes;     ///< after refinement (Sec. 4.3) and crease splits
   FeatureStats stats;        ///< of the refined supernodes
   Connectivity conn;         ///< eq. (8) over the refined supernodes
-  bool cad = false;          ///< CAD mode (Sec. 7): built by analyzeCad() in core/cad.h
+  bool cad = false;          ///< CAD mode (Sec. 7)
   Connectivity face_angles;  ///< CAD mode: angle (degrees) between touching supernodes' faces
-  double face_angle = 15.0;  ///< CAD mode: angle scale of the face similarity
-  /// Per pair of touching supernodes, how concave their contact is (core/concavity.h); empty
-  /// unless SimilarityParams::concavity_weight is used.
+  /// Per pair of touching supernodes, how concave their contact is (core/concavity.h); kept
+  /// when the cut's similarity uses it.
   Connectivity concavity;
-  /// Per directed kNN edge, its concave bend for the boundary refinement
-  /// (core/boundary_refinement.h); empty unless BoundaryParams::band_fraction is used.
+  bool has_concavity = false;
+  /// Per directed kNN edge, its concave bend (core/boundary_refinement.h); kept when the
+  /// cut's boundary refinement uses it.
   std::vector<std::uint8_t> crease;
+  bool has_crease = false;
+  std::vector<std::uint32_t> order; ///< PointSet::order
 };
 
-/** \brief Run Secs. 4.1-4.3 on a prepared kNN graph. Times go to times.centrality etc. */
-Analysis analyze(CsrGraph graph, const AnalysisParams& params, PhaseTimes& times);
+/** \brief What the cut stages need the analysis to have measured. */
+struct CutNeeds {
+  bool concavity = false; ///< Analysis::concavity (similarity.concavity on, not CAD)
+  bool crease = false;    ///< Analysis::crease (boundary.band on, not CAD)
+};
+CutNeeds cutNeeds(const Parameters& params);
+
+/** \brief Does the analysis hold what a cut with these parameters needs? */
+bool serves(const Analysis& analysis, const Parameters& params);
+
+/** \brief Run every analysis stage in order. The graph's time (and CAD normals') counts as
+ * times.knn, as in Table 1. params must be valid (validate()).
+ * \param[in] points  consumed: its arrays are freed as soon as no stage needs them */
+Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
+                 const PhaseProgressFn& progress = nullptr);
 
 /** \brief The cheap stage's result. */
 struct CutResult {
   WeightedGraph graph;                          ///< G_s (Sec. 5.1)
   Hierarchy hierarchy;                          ///< Sec. 5.2
   std::vector<std::uint32_t> supernode_segment; ///< per refined supernode, its segment
-  std::vector<std::uint32_t> point_segment;     ///< per point, its segment
+  std::vector<std::uint32_t> point_segment;     ///< per vertex, its segment
   std::size_t num_segments = 0;
 };
 
-/** \brief Run Sec. 5 on an analysis. Segments are numbered in order of their smallest point. */
-CutResult cut(const Analysis& analysis, const SimilarityParams& similarity, const CutParams& params,
-              PhaseTimes& times);
+/** \brief Run every cut stage in order on an analysis that serves() the parameters. Segments
+ * are numbered in order of their first vertex in Analysis::order. */
+CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& times);
+
+/** \brief Points prepared for analyze(): the distinct positions of an array of points in
+ * Morton order (every phase then reads its neighbours from nearby memory), centred. */
+struct PreparedPoints {
+  PointSet set;                     ///< without knn
+  std::vector<std::uint32_t> point; ///< per vertex, the index of its (first) input point
+  /// (index of a point at an earlier point's position, its vertex)
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;
+  std::vector<float> raw; ///< the input's x, y, z in vertex order (not centred)
+};
+
+/** \brief Order, deduplicate and centre n points (3 floats each, finite). The centroid is
+ * taken in double, so that a model far from the origin keeps its float precision. */
+PreparedPoints preparePoints(const float* xyz, std::size_t n);
+
+/** \brief The whole pipeline on n finite points (3 floats each) with FLANN's kd-tree for the
+ * kNN graph: per point its segment in [0, t), the segments numbered by their first point.
+ * The labels extract() of the PCL class gives for the same points and parameters. */
+std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n, const Parameters& params);
 
 } // namespace pcl_ncut_seg

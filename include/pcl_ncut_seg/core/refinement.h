@@ -3,6 +3,8 @@
  */
 #pragma once
 
+#include <pcl_ncut_seg/parameters.h>
+
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/supernodes.h>
 
@@ -29,12 +31,6 @@ struct FeatureStats {
 
 FeatureStats featureStats(const Supernodes& supernodes, const std::vector<float>& f,
                           const std::vector<float>& radii);
-
-/** \brief Thresholds of the local refinement. */
-struct RefinementParams {
-  float area_fraction = 0.01f;   ///< small: f_a < area_fraction * total area (footnote 4)
-  float height_fraction = 0.01f; ///< skinny: f_h < height_fraction * max f_h (footnote 5)
-};
 
 /** \brief Local refinement (Sec. 4.3), in this order:
  *  1. merge-up: a small supernode created at a saddle is dissolved into the supernodes that

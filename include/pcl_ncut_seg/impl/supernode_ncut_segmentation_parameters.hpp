@@ -1,0 +1,167 @@
+/*
+ * pcl_ncut_seg: the single-parameter setters of the PCL front end, each a thin wrapper of
+ * setParameters(): the table in parameter_table.h validates every value.
+ */
+#pragma once
+
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include <pcl/console/print.h>
+
+#include <pcl_ncut_seg/parameter_table.h>
+
+#include <optional>
+
+namespace pcl {
+namespace ncut_detail {
+/// Older releases took 0 for "off": the optional field is then empty.
+inline std::optional<double> offIfZero(double value) {
+  return value == 0.0 ? std::nullopt : std::optional<double>(value);
+}
+} // namespace ncut_detail
+} // namespace pcl
+
+template <typename PointT>
+bool pcl::SupernodeNCutSegmentation<PointT>::update(const pcl_ncut_seg::Parameters& params,
+                                                    const char* method) {
+  std::string why;
+  if (!pcl_ncut_seg::validate(params, &why)) {
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::%s] %s; keeping the previous value.\n", method,
+              why.c_str());
+    return false;
+  }
+  if (pcl_ncut_seg::analysisDiffers(params_, params))
+    invalidate();
+  params_ = params;
+  return true;
+}
+
+template <typename PointT>
+bool pcl::SupernodeNCutSegmentation<PointT>::setParameters(const pcl_ncut_seg::Parameters& params) {
+  return update(params, "setParameters");
+}
+
+// One wrapper per setter: copy the parameters, change one field, take them if valid.
+#define PCL_NCUT_SEG_SETTER(Method, Type, assignment)                                              \
+  template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::Method(Type value) {     \
+    pcl_ncut_seg::Parameters p = params_;                                                          \
+    assignment;                                                                                    \
+    update(p, #Method);                                                                            \
+  }
+
+PCL_NCUT_SEG_SETTER(setNumberOfNeighbours, int, p.graph.k = value)
+PCL_NCUT_SEG_SETTER(setNumberOfSamples, int,
+                    p.centrality.samples = value == 0 ? std::nullopt : std::optional<int>(value))
+PCL_NCUT_SEG_SETTER(setCentralityMode, pcl_ncut_seg::CentralityMode, p.centrality.mode = value)
+PCL_NCUT_SEG_SETTER(setNumberOfRepresentatives, int, p.centrality.representatives = value)
+PCL_NCUT_SEG_SETTER(setCrossingFraction, float, p.supernodes.crossing_fraction = value)
+PCL_NCUT_SEG_SETTER(setAreaFraction, float, p.refinement.area_fraction = value)
+PCL_NCUT_SEG_SETTER(setHeightFraction, float, p.refinement.height_fraction = value)
+PCL_NCUT_SEG_SETTER(setCreaseSplit, double,
+                    p.refinement.crease_split = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setCreaseCut, double, p.refinement.crease_cut = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setBridgeGap, double, p.graph.bridge_gap = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setCadMode, bool, p.cad.enabled = value)
+PCL_NCUT_SEG_SETTER(setBeta, double, p.similarity.beta = value)
+PCL_NCUT_SEG_SETTER(setAlpha1, double, p.similarity.alpha1 = value)
+PCL_NCUT_SEG_SETTER(setAlpha2, double, p.similarity.alpha2 = value)
+PCL_NCUT_SEG_SETTER(setNormalizeWidth, bool, p.similarity.normalize_width = value)
+PCL_NCUT_SEG_SETTER(setAdjacency, pcl_ncut_seg::Adjacency, p.similarity.adjacency = value)
+PCL_NCUT_SEG_SETTER(setAdjacentShare, double, p.similarity.adjacent_share = value)
+PCL_NCUT_SEG_SETTER(setConcavityWeight, double,
+                    p.similarity.concavity = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setFlatElongation, double,
+                    p.similarity.flat_elongation = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setFaceAngle, float, p.similarity.face_angle = value)
+PCL_NCUT_SEG_SETTER(setStoppingRule, pcl_ncut_seg::StoppingRule, p.stopping.rule = value)
+PCL_NCUT_SEG_SETTER(setThreshold, double, p.stopping.threshold = value)
+PCL_NCUT_SEG_SETTER(setNumberOfSplitValues, int, p.stopping.num_splits = value)
+PCL_NCUT_SEG_SETTER(setMinSegmentFraction, double,
+                    p.stopping.min_segment_fraction = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setMaxSegments, int, p.stopping.max_segments = value)
+PCL_NCUT_SEG_SETTER(setGapFloor, double, p.stopping.gap_floor = value)
+PCL_NCUT_SEG_SETTER(setNeckBound, double, p.stopping.neck_bound = value)
+PCL_NCUT_SEG_SETTER(setBoundaryBand, double, p.boundary.band = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setBoundaryCreaseWeight, double, p.boundary.crease_weight = value)
+PCL_NCUT_SEG_SETTER(setNumberOfThreads, unsigned, p.execution.num_threads = value)
+
+#undef PCL_NCUT_SEG_SETTER
+
+// The setters of an older release whose values became modes.
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setLargestGapStopping(bool enable) {
+  using pcl_ncut_seg::StoppingRule;
+  pcl_ncut_seg::Parameters p = params_;
+  if (!enable && p.stopping.rule != StoppingRule::Count)
+    p.stopping.rule = StoppingRule::Threshold;
+  else if (enable && p.stopping.rule == StoppingRule::Threshold)
+    p.stopping.rule = StoppingRule::ShortCut;
+  update(p, "setLargestGapStopping");
+}
+
+template <typename PointT>
+bool pcl::SupernodeNCutSegmentation<PointT>::getLargestGapStopping() const {
+  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::LargestGap ||
+         params_.stopping.rule == pcl_ncut_seg::StoppingRule::ShortCut;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNeckExponent(double exponent) {
+  using pcl_ncut_seg::StoppingRule;
+  pcl_ncut_seg::Parameters p = params_;
+  if (exponent == 0.0) { // the largest jump instead of the short-cut rule
+    if (p.stopping.rule == StoppingRule::ShortCut)
+      p.stopping.rule = StoppingRule::LargestGap;
+  } else {
+    p.stopping.neck_exponent = exponent;
+    if (p.stopping.rule == StoppingRule::LargestGap)
+      p.stopping.rule = StoppingRule::ShortCut;
+  }
+  update(p, "setNeckExponent");
+}
+
+template <typename PointT> double pcl::SupernodeNCutSegmentation<PointT>::getNeckExponent() const {
+  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::LargestGap
+             ? 0.0
+             : params_.stopping.neck_exponent;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
+  using pcl_ncut_seg::StoppingRule;
+  pcl_ncut_seg::Parameters p = params_;
+  if (segments == 0) {
+    if (p.stopping.rule == StoppingRule::Count)
+      p.stopping.rule = pcl_ncut_seg::Parameters().stopping.rule;
+  } else {
+    p.stopping.segments = segments;
+    p.stopping.rule = StoppingRule::Count;
+  }
+  update(p, "setNumberOfSegments");
+}
+
+template <typename PointT> int pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSegments() const {
+  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::Count ? params_.stopping.segments : 0;
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setConnectAdjacentTrees(bool connect) {
+  using pcl_ncut_seg::Adjacency;
+  pcl_ncut_seg::Parameters p = params_;
+  if (connect && p.similarity.adjacency == Adjacency::Saddles)
+    p.similarity.adjacency = Adjacency::Trees;
+  else if (!connect) // All implies the trees' joining: without it, saddles only
+    p.similarity.adjacency = Adjacency::Saddles;
+  update(p, "setConnectAdjacentTrees");
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect) {
+  using pcl_ncut_seg::Adjacency;
+  pcl_ncut_seg::Parameters p = params_;
+  if (connect)
+    p.similarity.adjacency = Adjacency::All;
+  else if (p.similarity.adjacency == Adjacency::All)
+    p.similarity.adjacency = Adjacency::Trees;
+  update(p, "setConnectAllAdjacent");
+}

@@ -1,0 +1,184 @@
+/*
+ * pcl_ncut_seg: every parameter of the segmentation, grouped by the stage of the pipeline that
+ * reads it, each declared once here with its default. The table of names, ranges and help text
+ * (parameter_table.h) describes every field; validation, the tools' flags, their help, the
+ * README's table and the range tests all read it.
+ *
+ * The paper's parameters (Yamazaki et al., "Segmenting Point-sampled Surfaces") come first in
+ * each group; the project's extensions follow them. Parameters::paper() is the paper to the
+ * letter; Parameters{} the project's defaults. An extension that can be off is a
+ * std::optional: std::nullopt is off, not a zero.
+ */
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace pcl_ncut_seg {
+
+/** \brief The stages of the pipeline, in order. Analysis stages make up the expensive stage
+ * (computed once per input); a change of one of their parameters invalidates it. Cut stages
+ * are cheap to repeat on a kept analysis. */
+enum class Stage {
+  Graph,      ///< kNN graph (Sec. 4.1) and bridging of its components
+  Centrality, ///< f(p), eq. (1) (Sec. 4.1)
+  Supernodes, ///< gradient flow with saddles (Sec. 4.2)
+  Refinement, ///< local refinement (Sec. 4.3) and crease splits
+  Cad,        ///< CAD mode's ridge graph (Sec. 7)
+  Similarity, ///< the supernode graph's weights (Sec. 5.1)
+  Stopping,   ///< the hierarchy of bisections and when it stops (Sec. 5.2)
+  Boundary,   ///< point-level boundary refinement
+  Execution   ///< how the work runs (threads); never changes the result
+};
+
+/** \brief True for the stages of the expensive analysis (Graph to Cad). */
+inline bool isAnalysisStage(Stage stage) {
+  return stage <= Stage::Cad;
+}
+
+/** \brief The stage's name, as the README and the help group parameters ("graph", ...). */
+const char* stageName(Stage stage);
+
+/** \brief How the centrality of Sec. 4.1 is computed. */
+enum class CentralityMode {
+  Exact, ///< as the paper: ceil(sqrt(n)) samples, searches over the whole kNN graph
+  Fast   ///< eq. (1) on a coarse graph of representatives, carried back to every point
+};
+
+/** \brief Which pairs of touching supernodes the supernode graph joins (Sec. 5.1). */
+enum class Adjacency {
+  Saddles, ///< the paper: member vertices m_i - m_j only where s_i and s_j meet at a saddle
+  Trees,   ///< also join the trees of member vertices that touch in the kNN graph
+  All      ///< every pair of supernodes that touch in the kNN graph (implies Trees)
+};
+
+/** \brief When the recursive bisection of Sec. 5.2 stops. */
+enum class StoppingRule {
+  Threshold,  ///< the paper: bisect a part while its best NCut is at most the threshold
+  LargestGap, ///< best-first splits up to the largest relative jump in NCut
+  ShortCut,   ///< best-first splits weighted by how short their boundary is (core/short_cut.h)
+  Count       ///< best-first splits until a given number of segments
+};
+
+/** \brief Sec. 4.1: the kNN graph. */
+struct GraphParams {
+  int k = 10; ///< nearest neighbours per point; the graph joins p and q if either is the other's
+  /// Extension: join components of the graph that only a sampling gap separates, by their
+  /// shortest point pair when it is at most this many kNN radii long. Off: the paper.
+  std::optional<double> bridge_gap = 3.0;
+};
+
+/** \brief Sec. 4.1: the centrality f of eq. (1). */
+struct CentralityParams {
+  /// Samples per connected component; nullopt: ceil(sqrt(n_c)) as in the paper.
+  std::optional<int> samples;
+  /// Extension: Fast computes eq. (1) on a coarse graph (f within about 1-2% of Exact's).
+  CentralityMode mode = CentralityMode::Fast;
+  int representatives = 20000; ///< Fast: points of the coarse graph (smaller inputs: exact)
+};
+
+/** \brief Sec. 4.2: supernodes. */
+struct SupernodeParams {
+  /// Fraction of |N(p)| below which a supernode's neighbours of p count as reached through
+  /// feature-crossing edges (Sec. 4.2 (b)).
+  float crossing_fraction = 0.3f;
+};
+
+/** \brief Sec. 4.3: local refinement; extensions: crease splits and cuts. */
+struct RefinementParams {
+  float area_fraction = 0.01f;   ///< small: f_a below this fraction of the total (footnote 4)
+  float height_fraction = 0.01f; ///< skinny: f_h below this fraction of the largest (footnote 5)
+  /// Extension: split a supernode along its most concave level cut of f when that cut's mean
+  /// concave bend (in units of the model's mean bend per kNN edge) is at least this. Off: the
+  /// paper.
+  std::optional<double> crease_split = 0.75;
+  /// Extension: split a supernode that no level cut splits along its minimum cut weighted by
+  /// concave bend when at least this share of the edges the cut crosses are concave.
+  std::optional<double> crease_cut;
+};
+
+/** \brief Sec. 7: CAD mode, the faces of a mechanical part separated at its ridges. */
+struct CadParams {
+  bool enabled = false;         ///< CAD mode instead of elongated parts
+  int smoothing_iterations = 3; ///< Laplacian smoothing steps of the approximate normals
+  float ridge_angle = 5.0f;     ///< degrees: mean normal turn to the neighbours on a ridge point
+  float shrink = 0.1f;          ///< length factor of edges between points equidistant from a ridge
+  float stretch = 1.0f;         ///< length factor of edges pointing straight away from a ridge
+};
+
+/** \brief Sec. 5.1: the weights of the supernode graph G_s. */
+struct SimilarityParams {
+  double beta = 2.0;   ///< eq. (7)
+  double alpha1 = 2.0; ///< eq. (9)
+  double alpha2 = 0.5; ///< eq. (9): alpha_ij = alpha2 min(f_w) / max(f_w)
+  /// Extension: the feature width divided by sqrt(total feature area), so that eq. (7) is
+  /// unit-free (false: the paper).
+  bool normalize_width = true;
+  /// Extension: which touching supernodes are joined (Saddles: the paper).
+  Adjacency adjacency = Adjacency::All;
+  /// With Adjacency::All: a pair that meets at no saddle is joined only if its contact is at
+  /// least this share of the smaller of the two supernodes' contacts with all others.
+  double adjacent_share = 0.45;
+  /// Extension: the weight of eq. (9) times exp(-w c), c the concavity of the pair's contact.
+  std::optional<double> concavity = 3.0;
+  /// Extension: flat supernodes (f_h < e sqrt(f_a)) leave the width ratio out of eq. (9).
+  std::optional<double> flat_elongation = 0.1;
+  /// CAD mode: angle scale in degrees of the face-orientation similarity exp(-(angle/a)^2).
+  float face_angle = 15.0f;
+};
+
+/** \brief Sec. 5.2: the hierarchy of bisections and its stopping rule. */
+struct StoppingParams {
+  StoppingRule rule = StoppingRule::ShortCut; ///< extension (Threshold: the paper)
+  double threshold = 0.1; ///< no part is split at a higher NCut (every rule but Count)
+  int num_splits = 100;   ///< uniform split values tried on each eigenvector
+  int segments = 2;       ///< Count: the number of segments asked for
+  /// Threshold: a part is bisected only if each side keeps at least this fraction of the
+  /// total feature area (off: the paper).
+  std::optional<double> min_segment_fraction;
+  int max_segments = 20;      ///< LargestGap, ShortCut: at most this many segments
+  double gap_floor = 3e-3;    ///< LargestGap, ShortCut: NCuts below this count as this
+  double neck_exponent = 3.0; ///< ShortCut: a split's NCut is weighted by neck^exponent
+  double neck_bound = 0.25;   ///< ShortCut: the weighted NCut below which a split is worth it
+};
+
+/** \brief Extension: point-level boundaries by minimum cuts between touching segments. */
+struct BoundaryParams {
+  /// The band around each common boundary holds at most this fraction of either segment's
+  /// area. Off: boundaries are supernode boundaries (the paper).
+  std::optional<double> band = 0.2;
+  double crease_weight = 3.0; ///< a kNN edge costs its length times exp(-w c), c its bend
+};
+
+/** \brief How the work runs; the result never depends on it. */
+struct ExecutionParams {
+  unsigned num_threads = 0; ///< 0: all cores (as PCL's OpenMP classes)
+};
+
+/** \brief All parameters, by stage. */
+struct Parameters {
+  GraphParams graph;
+  CentralityParams centrality;
+  SupernodeParams supernodes;
+  RefinementParams refinement;
+  CadParams cad;
+  SimilarityParams similarity;
+  StoppingParams stopping;
+  BoundaryParams boundary;
+  ExecutionParams execution;
+
+  /** \brief The project's defaults (the same as Parameters{}). */
+  static Parameters defaults() { return Parameters(); }
+  /** \brief The paper to the letter: every extension off, exact centrality, the threshold
+   * rule. Execution settings keep their defaults. */
+  static Parameters paper();
+};
+
+/** \brief The parameters valid? On false, why names the first bad one ("k must be an integer
+ * >= 2, got 1"). */
+bool validate(const Parameters& params, std::string* why = nullptr);
+
+/** \brief True when params differ from other in a field of an analysis stage. */
+bool analysisDiffers(const Parameters& params, const Parameters& other);
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,104 @@
+#include <pcl_ncut_seg/core/analysis_stages.h>
+
+#include <pcl_ncut_seg/core/boundary_refinement.h>
+#include <pcl_ncut_seg/core/bridging.h>
+#include <pcl_ncut_seg/core/coarse_centrality.h>
+#include <pcl_ncut_seg/core/concavity.h>
+#include <pcl_ncut_seg/core/crease_split.h>
+#include <pcl_ncut_seg/core/refinement.h>
+#include <pcl_ncut_seg/core/stopwatch.h>
+#include <pcl_ncut_seg/core/threads.h>
+
+namespace pcl_ncut_seg {
+
+CsrGraph graphStage(const float* xyz, std::size_t n, const std::uint32_t* knn, std::size_t k,
+                    const GraphParams& params, unsigned num_threads) {
+  CsrGraph graph = buildSymmetricKnnGraph(xyz, n, knn, k, usableThreads(num_threads));
+  if (params.bridge_gap)
+    bridgeComponents(graph, xyz, *params.bridge_gap);
+  return graph;
+}
+
+namespace {
+Centrality centralityStage(const CsrGraph& graph, const CentralityParams& params,
+                           unsigned num_threads, const std::uint32_t* tie_rank,
+                           const PhaseProgressFn& progress) {
+  ProgressFn fraction;
+  if (progress)
+    fraction = [&progress](double done) { progress("Cen", done); };
+  const auto samples = static_cast<std::size_t>(params.samples.value_or(0));
+  if (params.mode == CentralityMode::Exact)
+    return computeCentrality(graph, samples, num_threads, tie_rank, fraction);
+  return computeCoarseCentrality(graph, static_cast<std::size_t>(params.representatives), samples,
+                                 num_threads, tie_rank, fraction);
+}
+
+void report(const PhaseProgressFn& progress, const char* phase, double fraction) {
+  if (progress)
+    progress(phase, fraction);
+}
+} // namespace
+
+Analysis featureStages(CsrGraph graph, const Parameters& params, const std::uint32_t* tie_rank,
+                       PhaseTimes& times, const PhaseProgressFn& progress) {
+  const unsigned threads = params.execution.num_threads;
+  Analysis a;
+  a.graph = std::move(graph);
+  Stopwatch clock;
+  report(progress, "Cen", 0.0);
+  a.centrality = centralityStage(a.graph, params.centrality, threads, tie_rank, progress);
+  report(progress, "Cen", 1.0);
+  times.centrality = clock.lap();
+  report(progress, "Snod", 0.0);
+  a.raw_supernodes =
+      extractSupernodes(a.graph, a.centrality.f, params.supernodes.crossing_fraction);
+  report(progress, "Snod", 1.0);
+  times.supernodes = clock.lap();
+  report(progress, "LRef", 0.0);
+  a.radii = pointRadii(a.graph, a.centrality.f, threads);
+  a.supernodes =
+      refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
+  a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
+  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label, threads);
+  report(progress, "LRef", 1.0);
+  times.refinement = clock.lap();
+  return a;
+}
+
+SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
+  SurfaceBends b;
+  b.normals = orientedNormals(graph, xyz, num_threads);
+  b.typical_bend = meanAbsBend(graph, xyz, b.normals, num_threads);
+  return b;
+}
+
+void creaseStage(Analysis& a, const float* xyz, const SurfaceBends& bends,
+                 const Parameters& params) {
+  CreaseSplitParams crease;
+  crease.typical_bend = bends.typical_bend;
+  crease.min_concavity = params.refinement.crease_split.value_or(0.0);
+  crease.cut_concavity = params.refinement.crease_cut.value_or(0.0);
+  crease.area_fraction = params.refinement.area_fraction;
+  crease.num_threads = params.execution.num_threads;
+  std::size_t splits = 0;
+  a.supernodes = splitAtCreases(a.graph, xyz, bends.normals, a.centrality.f, a.radii, a.supernodes,
+                                crease, &splits);
+  if (splits == 0)
+    return;
+  a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
+  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label,
+                                 params.execution.num_threads);
+}
+
+void contactStage(Analysis& a, const float* xyz, const SurfaceBends& bends, const CutNeeds& needs,
+                  unsigned num_threads) {
+  if (needs.concavity)
+    a.concavity =
+        contactConcavity(a.graph, xyz, bends.normals, a.supernodes.label, bends.typical_bend);
+  if (needs.crease)
+    a.crease = edgeCreases(a.graph, xyz, bends.normals, num_threads, bends.typical_bend);
+  a.has_concavity = needs.concavity;
+  a.has_crease = needs.crease;
+}
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,89 @@
+#include <pcl_ncut_seg/core/cut_stages.h>
+
+#include <pcl_ncut_seg/core/boundary_refinement.h>
+#include <pcl_ncut_seg/core/cad.h>
+#include <pcl_ncut_seg/core/short_cut.h>
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+
+namespace pcl_ncut_seg {
+
+WeightedGraph similarityStage(const Analysis& a, const SimilarityParams& params) {
+  if (a.cad)
+    return buildCadSupernodeGraph(a.supernodes, a.stats, a.conn, a.face_angles, params);
+  return buildSupernodeGraph(a.supernodes, a.stats, a.conn, params, &a.concavity);
+}
+
+Hierarchy hierarchyStage(const Analysis& a, const WeightedGraph& graph,
+                         const StoppingParams& params) {
+  const std::size_t l = a.supernodes.size();
+  if (params.rule != StoppingRule::ShortCut)
+    return buildHierarchy(graph, l, params);
+  // The short-cut rule measures each split's boundary on the kNN graph (core/short_cut.h).
+  const NeckMeasure necks(a.graph, a.supernodes.label, l);
+  const SplitNeckFn split_neck = [&necks, l](const std::vector<std::uint32_t>& v1,
+                                             const std::vector<std::uint32_t>& v2) {
+    std::vector<std::int8_t> side(l, -1);
+    for (std::uint32_t v : v1)
+      if (v >= l)
+        side[v - l] = 0; // member vertex m_i = l + i stands for supernode i (footnote 6)
+    for (std::uint32_t v : v2)
+      if (v >= l)
+        side[v - l] = 1;
+    return necks.neck(side);
+  };
+  return buildHierarchy(graph, l, params, split_neck);
+}
+
+void labelPoints(const Analysis& a, CutResult& r) {
+  const std::size_t l = a.supernodes.size();
+  std::vector<std::uint32_t> leaf_of(l, kNone);
+  const std::vector<int> leaves = r.hierarchy.leaves();
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    for (std::uint32_t v : r.hierarchy.nodes[leaves[k]].vertices)
+      if (v >= l)
+        leaf_of[v - l] = static_cast<std::uint32_t>(k);
+  std::vector<std::uint32_t> segment_of_leaf(leaves.size(), kNone);
+  const std::vector<std::uint32_t>& label = a.supernodes.label;
+  r.num_segments = 0;
+  r.point_segment.resize(label.size());
+  for (std::size_t p = 0; p < label.size(); ++p) {
+    std::uint32_t& seg = segment_of_leaf[leaf_of[label[p]]];
+    if (seg == kNone)
+      seg = static_cast<std::uint32_t>(r.num_segments++);
+    r.point_segment[p] = seg;
+  }
+  r.supernode_segment.resize(l);
+  for (std::size_t s = 0; s < l; ++s)
+    r.supernode_segment[s] = segment_of_leaf[leaf_of[s]];
+}
+
+void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
+  if (a.cad || !params.band)
+    return;
+  refineBoundaries(a.graph, a.radii, a.crease, params, r.point_segment, r.num_segments);
+}
+
+void numberSegments(const std::vector<std::uint32_t>& order, CutResult& r) {
+  std::vector<std::uint32_t> first(r.num_segments, std::numeric_limits<std::uint32_t>::max());
+  for (std::size_t v = 0; v < r.point_segment.size(); ++v) {
+    std::uint32_t& m = first[r.point_segment[v]];
+    m = std::min(m, order.empty() ? static_cast<std::uint32_t>(v) : order[v]);
+  }
+  std::vector<std::uint32_t> by_first(r.num_segments), rank(r.num_segments);
+  for (std::uint32_t s = 0; s < by_first.size(); ++s)
+    by_first[s] = s;
+  std::sort(by_first.begin(), by_first.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return first[a] < first[b]; });
+  for (std::uint32_t i = 0; i < by_first.size(); ++i)
+    rank[by_first[i]] = i;
+  for (auto& s : r.point_segment)
+    s = rank[s];
+  for (auto& s : r.supernode_segment)
+    if (s < rank.size())
+      s = rank[s];
+}
+
+} // namespace pcl_ncut_seg
