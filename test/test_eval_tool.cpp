@@ -118,7 +118,8 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
         psb + " " + out + " -fractions 0.1,0.7", psb + " " + out + " -thresholds 0.1,x",
         psb + " " + out + " -threshold 0.1 -thresholds 0.1,0.2", psb + " " + out + " -modes ,",
         psb + " " + out + " -creasecut 2", psb + " " + out + " -crease_cut 0.1 -creasecut 0.2",
-        psb + " " + out + " -gap 2", psb + " " + out + " -bogus"}) {
+        psb + " " + out + " -gap 1", psb + " " + out + " -neck 0",
+        psb + " " + out + " -segments 3 -thresholds 0.1,0.2", psb + " " + out + " -bogus"}) {
     EXPECT_EQ(run(args), 1) << args;
     const std::string err = stderrText();
     EXPECT_FALSE(err.empty()) << args;
@@ -138,10 +139,10 @@ TEST_F(EvalTool, TakesTheToolsFlagsAndTheOldSpellings) {
         rows += c == 6 ? "," : cols[c] + ",";
     return rows;
   };
-  ASSERT_EQ(run(args + "-crease_cut 0.3 -neck_exponent 0 -boundary_band 0.1 -bridge_gap 2"), 0)
+  ASSERT_EQ(run(args + "-crease_cut 0.3 -neck_exponent 2 -boundary_band 0.1 -bridge_gap 2"), 0)
       << stderrText();
   const std::string new_names = withoutSeconds();
-  ASSERT_EQ(run(args + "-creasecut 0.3 -neck 0 -band 0.1 -bridge 2"), 0) << stderrText();
+  ASSERT_EQ(run(args + "-creasecut 0.3 -neck 2 -band 0.1 -bridge 2"), 0) << stderrText();
   EXPECT_EQ(withoutSeconds(), new_names);
   EXPECT_FALSE(new_names.empty());
 }

@@ -45,7 +45,8 @@ std::vector<Flag> toolFlags() {
                      "older scripts",
                      ""),
           textFlag("-split", "PREFIX",
-                   "also write each segment to PREFIX_<label>.pcd (same fields)", "off")});
+                   "also write each segment to PREFIX_<label>.pcd (same fields)", "off")},
+         "output");
   append(table, commonFlags());
   return table;
 }

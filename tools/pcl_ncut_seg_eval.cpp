@@ -125,9 +125,9 @@ std::vector<Flag> runFlags() {
                "-threshold that reuses each model's expensive stage)",
                "-threshold"),
       textFlag("-fractions", "LIST",
-               "minimum segment fractions for 'ours' in auto mode, each its own row (with "
-               "every threshold; a sweep of -min_fraction)",
-               "-min_fraction"),
+               "minimum segment fractions for 'ours' in auto mode, each in [0, 0.5] (0: off) "
+               "and its own row with every threshold (a sweep of -min_segment_fraction)",
+               "-min_segment_fraction"),
   };
   rows[0].check = [](const std::string& t, std::string* why) {
     std::vector<std::string> items;
@@ -152,18 +152,18 @@ std::vector<Flag> runFlags() {
   return rows;
 }
 
-/** The evaluator's old switches of the stopping rule and the adjacency (0 or 1). */
-std::vector<Flag> oldSwitchFlags() {
-  return {intFlag("-gap", "0|1", "setLargestGapStopping: 1 = the largest-gap rule", "1", 0, 1),
-          intFlag("-adjacent", "0|1", "setConnectAllAdjacent", "1", 0, 1)};
+/** The algorithm's defaults in the evaluator: those of the library, on one thread. */
+pcl_ncut_seg::Parameters evalDefaults() {
+  pcl_ncut_seg::Parameters p;
+  p.execution.num_threads = 1;
+  return p;
 }
 
-/** Every flag of the evaluator. Centrality threads default to 1 here. */
+/** Every flag of the evaluator. */
 std::vector<Flag> evalFlags() {
-  std::vector<Flag> table = runFlags();
-  append(table, algorithmFlags());
-  append(table, oldSwitchFlags());
-  findFlag(table, "-threads")->def = "1";
+  std::vector<Flag> table;
+  append(table, runFlags(), "evaluation");
+  append(table, algorithmFlags(evalDefaults()));
   append(table, commonFlags());
   return table;
 }
@@ -177,15 +177,15 @@ void printHelp() {
   printFlags(evalFlags());
 }
 
-/** What to run; the algorithm flags stay in flags, for configure(). */
+/** What to run, and the parameters of 'ours'. */
 struct Options {
   std::string psb_dir, out_dir;
   std::vector<std::string> methods = kAllMethods, modes = kAllModes;
   std::vector<int> ids;           ///< empty: every off/<id>.off
   std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
-  std::vector<double> fractions;  ///< auto mode; empty: the parameters' min fraction
+  std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
   bool quiet = false;
-  Flags flags;
+  pcl_ncut_seg::Parameters params; ///< -paper or the defaults, and the algorithm flags
 
   bool has(const std::string& method) const {
     return std::find(methods.begin(), methods.end(), method) != methods.end();
@@ -201,12 +201,15 @@ Options readOptions(const Flags& flags) {
     throw Failure("expected <psb_dir> <out_dir> (see -h)");
   for (const auto& [list, single] :
        {std::pair<const char*, const char*>{"-thresholds", "-threshold"},
-        {"-fractions", "-min_fraction"}})
+        {"-fractions", "-min_segment_fraction"}})
     if (flags.has(list) && flags.has(single))
       throw Failure(std::string("give either ") + single + " or " + list + ", not both");
-  if (flags.has("-segments") && (flags.has("-thresholds") || flags.has("-fractions")))
-    throw Failure("-segments asks for a count: it takes no -thresholds or -fractions");
   Options o;
+  if (!parametersFromFlags(flags, evalDefaults(), o.params))
+    throw Failure(""); // said why
+  if (o.params.stopping.rule == pcl_ncut_seg::StoppingRule::Count &&
+      (flags.has("-thresholds") || flags.has("-fractions")))
+    throw Failure("the count rule (-segments) takes no -thresholds or -fractions");
   o.psb_dir = flags.files[0];
   o.out_dir = flags.files[1];
   std::string why;
@@ -221,19 +224,13 @@ Options readOptions(const Flags& flags) {
   if (flags.has("-fractions"))
     parseNumbers(flags.text("-fractions"), 0, 0.5, o.fractions, &why);
   o.quiet = flags.has("-quiet");
-  o.flags = flags;
   return o;
 }
 
-/** The segmenter set as the algorithm flags say (centrality threads: 1 unless given); false
- * with one error line when they contradict each other. */
-bool configure(Segmenter& seg, const Flags& flags) {
-  seg.setNumberOfThreads(1);
-  if (flags.has("-gap"))
-    seg.setLargestGapStopping(flags.integer("-gap") == 1);
-  if (flags.has("-adjacent"))
-    seg.setConnectAllAdjacent(flags.integer("-adjacent") == 1);
-  return applyAlgorithmFlags(flags, seg);
+/** The segmenter set to these parameters (valid: the flag table checked them). */
+void configure(Segmenter& seg, const pcl_ncut_seg::Parameters& params) {
+  if (!seg.setParameters(params))
+    throw Failure("the segmenter refused the parameters");
 }
 
 // -------------------------------------------------------------------------------- benchmark
@@ -375,22 +372,28 @@ void addBothModes(const Options& opt, Row r, Report& report) {
   }
 }
 
-/** One auto-mode setting of 'ours': a threshold and a minimum segment fraction, and its row's
- * method name ("ours", or "ours t=... f=..." in a sweep). */
+/** One auto-mode setting of 'ours': a threshold and a minimum segment fraction (0: off),
+ * and its row's method name ("ours", or "ours t=... f=..." in a sweep). */
 struct OursSetting {
   double threshold, fraction;
   std::string name;
+
+  pcl_ncut_seg::Parameters applied(pcl_ncut_seg::Parameters p) const {
+    p.stopping.threshold = threshold;
+    p.stopping.min_segment_fraction.reset();
+    if (fraction > 0)
+      p.stopping.min_segment_fraction = fraction;
+    return p;
+  }
 };
 
 /** Every threshold with every fraction; without a list, the parameters' own value. */
 std::vector<OursSetting> oursSettings(const Options& opt) {
-  Segmenter seg;
-  configure(seg, opt.flags);
   std::vector<double> thresholds = opt.thresholds, fractions = opt.fractions;
   if (thresholds.empty())
-    thresholds.push_back(seg.getThreshold());
+    thresholds.push_back(opt.params.stopping.threshold);
   if (fractions.empty())
-    fractions.push_back(seg.getMinSegmentFraction());
+    fractions.push_back(opt.params.stopping.min_segment_fraction.value_or(0.0));
   std::vector<OursSetting> settings;
   for (double t : thresholds)
     for (double f : fractions) {
@@ -413,13 +416,11 @@ void scoreOurs(const Model& m, const Options& opt, const std::vector<OursSetting
   for (std::size_t i = 0; i < m.n; ++i)
     (*cloud)[i] = pcl::PointXYZ(m.xyz[3 * i], m.xyz[3 * i + 1], m.xyz[3 * i + 2]);
   Segmenter seg;
-  configure(seg, opt.flags);
   seg.setInputCloud(cloud);
   std::vector<pcl::PointIndices> segments;
   double analysis_seconds = -1;
   for (std::size_t t = 0; t < settings.size() && (opt.hasMode("auto") || t == 0); ++t) {
-    seg.setThreshold(settings[t].threshold);
-    seg.setMinSegmentFraction(settings[t].fraction);
+    configure(seg, settings[t].applied(opt.params));
     const auto start = std::chrono::steady_clock::now();
     seg.extract(segments);
     const double secs = secondsSince(start);
@@ -435,7 +436,10 @@ void scoreOurs(const Model& m, const Options& opt, const std::vector<OursSetting
     report.rows.push_back(r);
   }
   if (opt.hasMode("given")) {
-    seg.setNumberOfSegments(m.given);
+    pcl_ncut_seg::Parameters given = opt.params;
+    given.stopping.rule = pcl_ncut_seg::StoppingRule::Count;
+    given.stopping.segments = m.given;
+    configure(seg, given);
     const auto start = std::chrono::steady_clock::now();
     seg.extract(segments);
     Row r =
@@ -549,11 +553,7 @@ int main(int argc, char** argv) {
   // PCL's segmenters report progress at the info level; keep the output to our summary lines.
   pcl::console::setVerbosityLevel(pcl::console::L_WARN);
   try {
-    const Options opt = readOptions(flags);
-    Segmenter check; // the algorithm flags checked once, up front
-    if (!configure(check, opt.flags))
-      return 1;
-    evaluate(opt);
+    evaluate(readOptions(flags));
   } catch (const Failure& e) {
     if (*e.what())
       fail(e.what());

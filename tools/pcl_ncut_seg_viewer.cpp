@@ -41,6 +41,7 @@ using namespace pcl_ncut_seg::tool;
 namespace {
 
 using ColorCloud = pcl::PointCloud<pcl::PointXYZRGB>;
+using pcl_ncut_seg::StoppingRule;
 
 /** What can be shown. Coarser and finer are the segments of a cut with one segment less or
  * more than the first cut, from the same expensive stage. */
@@ -135,7 +136,8 @@ std::vector<Flag> viewerFlags() {
                    "the model's axis that points up on screen: +x, -x, +y, -y, +z or -z; the "
                    "camera looks from the side of least extent",
                    "the middle principal axis"),
-          intFlag("-point_size", "P", "point size in pixels, >= 1", "3", 1, 50)});
+          intFlag("-point_size", "P", "point size in pixels, >= 1", "3", 1, 50)},
+         "viewer");
   findFlag(table, "-view")->check =
       checkWith([](const std::string& t) { return !namedViews(t).empty(); },
                 "segments, centrality, supernodes, refined, coarser, finer or all");
@@ -197,10 +199,8 @@ public:
       return false;
     first_segments_ = segments.size();
     current_segments_ = segments.size();
-    first_threshold_ = seg_.getThreshold();
-    largest_gap_ = seg_.getLargestGapStopping();
-    short_cut_ = largest_gap_ && seg_.getNeckExponent() > 0.0;
-    by_number_ = seg_.getNumberOfSegments() > 0;
+    first_threshold_ = seg_.getParameters().stopping.threshold;
+    first_rule_ = seg_.getParameters().stopping.rule;
     colored_ = seg_.getColoredCloud();
     return true;
   }
@@ -236,10 +236,10 @@ public:
     ColorCloud::Ptr out(new ColorCloud(*colored_));
     if (view == View::Segments || view == View::Coarser || view == View::Finer) {
       t << "Segments: t = " << current_segments_;
-      if (current_segments_ == first_segments_ && !by_number_)
-        t << (short_cut_     ? " (short-cut rule, NCut <= "
-              : largest_gap_ ? " (largest NCut gap, NCut <= "
-                             : " (NCut threshold ")
+      if (current_segments_ == first_segments_ && first_rule_ != StoppingRule::Count)
+        t << (first_rule_ == StoppingRule::ShortCut     ? " (short-cut rule, NCut <= "
+              : first_rule_ == StoppingRule::LargestGap ? " (largest NCut gap, NCut <= "
+                                                        : " (NCut threshold ")
           << first_threshold_ << ")";
       else if (current_segments_ != first_segments_)
         t << " (hierarchy, " << (current_segments_ > first_segments_ ? "finer" : "coarser")
@@ -319,9 +319,7 @@ private:
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr colored_;
   std::size_t first_segments_ = 0, current_segments_ = 0;
   double first_threshold_ = 0;
-  bool largest_gap_ = false;
-  bool short_cut_ = false;
-  bool by_number_ = false;
+  StoppingRule first_rule_ = StoppingRule::ShortCut; ///< of the first cut
   bool reused_ = true;
 };
 

@@ -1,11 +1,14 @@
 /*
- * pcl_ncut_seg tools: the algorithm's parameters as flags, the same in every tool, and their
- * values applied to a segmenter.
+ * pcl_ncut_seg tools: the algorithm's parameters as flags, the same in every tool. Each row of
+ * pcl_ncut_seg::parameterTable() is a flag, "-" + its name (its old spellings as aliases), with
+ * its help, range and default; -paper starts from Parameters::paper() instead of the defaults,
+ * and the flags given apply on top of it.
  */
 #pragma once
 
 #include "cli/flags.h"
 
+#include <pcl_ncut_seg/parameters.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <pcl/point_types.h>
@@ -17,12 +20,17 @@ namespace tool {
 
 using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
 
-/** \brief The algorithm's parameters as flags, with the library's defaults. */
-std::vector<Flag> algorithmFlags();
+/** \brief -paper, the shorthands (-exact) and one flag per parameter, grouped by stage. The
+ * help gives each default as in base, and its value under -paper where that differs. */
+std::vector<Flag> algorithmFlags(const Parameters& base = Parameters());
 
-/** \brief Set the segmenter's parameters from the algorithm flags given; false with one error
- * line when they contradict each other. */
-bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg);
+/** \brief The parameters the flags ask for: Parameters::paper() with -paper, else base, then
+ * every parameter flag given, in command-line order. False with one error line when flags
+ * contradict each other (-segments with -threshold, -exact with -centrality, ...). */
+bool parametersFromFlags(const Flags& flags, const Parameters& base, Parameters& params);
+
+/** \brief parametersFromFlags, then the segmenter set to them; false with one error line. */
+bool applyAlgorithmFlags(const Flags& flags, Segmenter& seg, const Parameters& base = Parameters());
 
 } // namespace tool
 } // namespace pcl_ncut_seg

@@ -72,8 +72,12 @@ Flag* findFlag(std::vector<Flag>& table, const std::string& name) {
   return it == table.end() ? nullptr : &*it;
 }
 
-void append(std::vector<Flag>& table, const std::vector<Flag>& more) {
-  table.insert(table.end(), more.begin(), more.end());
+void append(std::vector<Flag>& table, const std::vector<Flag>& more, const std::string& group) {
+  for (const Flag& f : more) {
+    table.push_back(f);
+    if (!group.empty())
+      table.back().group = group;
+  }
 }
 
 bool toDouble(const std::string& s, double& value) {
@@ -213,9 +217,12 @@ void printFlags(const std::vector<Flag>& table) {
 }
 
 std::vector<Flag> commonFlags() {
-  Flag help = switchFlag("-h", "this help", "");
-  help.aliases = {"--help"};
-  return {switchFlag("-quiet", "print errors and warnings only"), help};
+  std::vector<Flag> table = {switchFlag("-quiet", "print errors and warnings only"),
+                             switchFlag("-h", "this help", "")};
+  table[1].aliases = {"--help"};
+  for (Flag& f : table)
+    f.group = "general";
+  return table;
 }
 
 } // namespace tool

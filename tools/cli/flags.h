@@ -68,8 +68,8 @@ void printFlags(const std::vector<Flag>& table);
 /** \brief -quiet and -h (also --help). */
 std::vector<Flag> commonFlags();
 
-/** \brief Append the rows of more to table. */
-void append(std::vector<Flag>& table, const std::vector<Flag>& more);
+/** \brief Append the rows of more to table, under this group's heading if one is given. */
+void append(std::vector<Flag>& table, const std::vector<Flag>& more, const std::string& group = "");
 
 /** \brief Strict conversions: the whole text must be a finite number (an int for toInt). */
 bool toDouble(const std::string& text, double& value);

@@ -24,12 +24,14 @@ namespace tool {
 const char* const kInputFormats = ".pcd, .ply, .off or .obj";
 
 std::vector<Flag> meshFlags() {
-  return {
-      intFlag("-samples", "N",
-              "mesh input: N points sampled uniformly by area instead of one per face, >= 1",
+  std::vector<Flag> table = {
+      intFlag("-samples", "N", "N points sampled uniformly by area instead of one per face, >= 1",
               "one per face", 1),
-      intFlag("-seed", "S", "mesh input: random seed of -samples, >= 0", "1", 0),
+      intFlag("-seed", "S", "random seed of -samples, >= 0", "1", 0),
   };
+  for (Flag& f : table)
+    f.group = "mesh input";
+  return table;
 }
 
 MeshSampling meshSampling(const Flags& flags) {
