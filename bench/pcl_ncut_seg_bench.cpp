@@ -14,6 +14,7 @@
 
 #include "mesh_sampling.h"
 #include "peak_memory.h"
+#include "timing.h"
 
 #include <pcl/segmentation/lccp_segmentation.h>
 #include <pcl/segmentation/supervoxel_clustering.h>
@@ -22,18 +23,18 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
+using pcl_ncut_seg_bench::loadAverage;
+using pcl_ncut_seg_bench::now;
 using pcl_ncut_seg_bench::procStatusBytes;
 using pcl_ncut_seg_bench::startPeakMemory;
 
@@ -63,10 +64,6 @@ const std::vector<Row> kQuickRows = {{"hand_c", "cgal-hand.off", 4000},
                                      {"santa_f", "santa.off", 50002},
                                      {"block", "block.off", 180926},
                                      {"armadillo", "cgal-armadillo.off", 1000000}};
-
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 Cloud::Ptr sampleModel(const std::string& path, std::size_t n, double* diagonal) {
   pcl_ncut_seg::TriangleMesh mesh;
@@ -174,13 +171,6 @@ bool measure(const std::string& self, const std::string& path, std::size_t n,
       result[field.substr(0, eq)] = std::strtod(field.c_str() + eq + 1, nullptr);
   }
   return result.count("total") > 0;
-}
-
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
 }
 
 /// Least-squares slope of log(y) against log(n) over the points with y >= 1 ms.

@@ -12,10 +12,8 @@
 
 #include "mesh_sampling.h"
 #include "peak_memory.h"
+#include "timing.h"
 
-#include <time.h>
-
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -23,20 +21,10 @@
 #include <vector>
 
 namespace {
+using pcl_ncut_seg_bench::cpuNow;
+using pcl_ncut_seg_bench::now;
 using pcl_ncut_seg_bench::procStatusBytes;
 using pcl_ncut_seg_bench::startPeakMemory;
-
-/// CPU time of the process: less noisy than wall time on a loaded machine (cut() runs on one
-/// thread).
-double cpuNow() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 int runOne(const std::string& path, std::size_t n, double band, int threads) {
   pcl_ncut_seg::TriangleMesh mesh;

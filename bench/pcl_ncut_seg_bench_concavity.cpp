@@ -14,18 +14,17 @@
 
 #include "mesh_sampling.h"
 #include "peak_memory.h"
+#include "timing.h"
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
 #include <malloc.h>
-#include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -35,19 +34,10 @@
 #include <string>
 
 namespace {
+using pcl_ncut_seg_bench::cpuNow;
+using pcl_ncut_seg_bench::now;
 using pcl_ncut_seg_bench::procStatusBytes;
 using pcl_ncut_seg_bench::startPeakMemory;
-
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// CPU time of the process (all threads): less noisy than wall time on a loaded machine.
-double cpuNow() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 /// Points in Morton order, as the segmenter orders them.
 void mortonSort(std::vector<float>& xyz) {

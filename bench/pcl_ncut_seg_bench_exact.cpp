@@ -12,12 +12,12 @@
 #include <pcl_ncut_seg/core/shortest_paths.h>
 
 #include "mesh_sampling.h"
+#include "timing.h"
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,17 +28,8 @@
 #include <vector>
 
 namespace {
-
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-std::string loadAverage() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
-}
+using pcl_ncut_seg_bench::loadAverage;
+using pcl_ncut_seg_bench::now;
 
 template <class T> std::uint64_t hashBits(const std::vector<T>& x, std::uint64_t h) {
   for (const T& v : x) {

@@ -8,19 +8,24 @@
  * them, per face as the benchmark does). Points are the face centroids (as test/test_psb.cpp),
  * or with --samples N, N area-uniform samples labelled by the face they fall on, so that the
  * coarse graph of the Fast mode is used on every model.
+ *
+ * The limb models of test/test_psb.cpp (hands 181-183, four-legged animals 381-383; --limbs
+ * runs only these) get a line of their own: their mean 1 - Rand index against the goal of 0.2,
+ * which the default mode does not reach yet (README, "Known limitations"), and that of k-means
+ * on the points with the same counts, the baseline the test holds them to.
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "mesh_sampling.h"
+#include "support/metrics.h"
+#include "timing.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace {
@@ -28,52 +33,30 @@ namespace {
 namespace fs = std::filesystem;
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
-/// Rand index of two labellings from their contingency table.
-double randIndex(const std::vector<int>& a, const std::vector<int>& b) {
-  const double n = static_cast<double>(a.size());
-  if (a.size() < 2)
-    return 1.0;
-  std::unordered_map<long long, double> joint;
-  std::unordered_map<int, double> ca, cb;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    joint[(static_cast<long long>(a[i]) << 32) ^ static_cast<unsigned>(b[i])] += 1;
-    ca[a[i]] += 1;
-    cb[b[i]] += 1;
-  }
-  auto pairs = [](double c) { return c * (c - 1) / 2; };
-  double same_both = 0, same_a = 0, same_b = 0;
-  for (const auto& [k, c] : joint)
-    same_both += pairs(c);
-  for (const auto& [k, c] : ca)
-    same_a += pairs(c);
-  for (const auto& [k, c] : cb)
-    same_b += pairs(c);
-  const double total = pairs(n);
-  return (total - same_a - same_b + 2 * same_both) / total;
-}
-
 std::vector<int> segmentLabels(const Cloud::Ptr& cloud, int segments_wanted,
                                pcl_ncut_seg::CentralityMode mode, double* seconds) {
-  const auto start = std::chrono::steady_clock::now();
+  const double start = pcl_ncut_seg_bench::now();
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
   seg.setCentralityMode(mode);
   seg.setNumberOfSegments(segments_wanted);
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
-  *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::vector<int> labels(cloud->size(), -1);
-  for (std::size_t s = 0; s < segments.size(); ++s)
-    for (const auto i : segments[s].indices)
-      labels[i] = static_cast<int>(s);
-  return labels;
+  *seconds = pcl_ncut_seg_bench::now() - start;
+  return pcl_ncut_seg::test::segmentsToLabels(segments, cloud->size());
 }
+
+using pcl_ncut_seg::test::randIndex;
+
+/// The limb models of test/test_psb.cpp and the goal for their mean 1 - Rand index.
+const std::vector<int> kLimbModels = {181, 182, 183, 381, 382, 383};
+constexpr double kLimbGoal = 0.2;
 
 } // namespace
 
 int main(int argc, char** argv) {
   std::size_t samples = 0;
-  bool stability = false;
+  bool stability = false, limbs_only = false;
   fs::path dir = fs::path(PCL_NCUT_SEG_BENCH_DATA) / "psb-dev";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -81,15 +64,18 @@ int main(int argc, char** argv) {
       samples = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--stability")
       stability = true;
+    else if (a == "--limbs")
+      limbs_only = true;
     else if (a == "--data" && i + 1 < argc)
       dir = fs::path(argv[++i]) / "psb-dev";
     else {
-      std::printf("Usage: %s [--samples N] [--stability] [--data DIR]\n"
+      std::printf("Usage: %s [--samples N] [--stability] [--limbs] [--data DIR]\n"
                   "Rand index between the Exact and the default (Fast) centrality's segmentations\n"
                   "on the PSB dev split, and 1 - Rand index of both against the humans.\n"
                   "  --samples N  N surface samples per model instead of the face centroids\n"
                   "  --stability  also the Rand index between Exact on the points and Exact on\n"
                   "               them in reverse order (another first sample): the baseline\n"
+                  "  --limbs      only the limb models of test/test_psb.cpp (181-183, 381-383)\n"
                   "  --data DIR   shared data directory with psb-dev/\n",
                   argv[0]);
       return a == "-h" || a == "--help" ? 0 : 1;
@@ -98,8 +84,11 @@ int main(int argc, char** argv) {
   std::vector<int> ids;
   if (fs::is_directory(dir / "off"))
     for (const auto& entry : fs::directory_iterator(dir / "off"))
-      if (entry.path().extension() == ".off")
-        ids.push_back(std::atoi(entry.path().stem().c_str()));
+      if (entry.path().extension() == ".off") {
+        const int id = std::atoi(entry.path().stem().c_str());
+        if (!limbs_only || std::count(kLimbModels.begin(), kLimbModels.end(), id) > 0)
+          ids.push_back(id);
+      }
   if (ids.empty()) {
     std::fprintf(stderr, "no models in %s\n", (dir / "off").c_str());
     return 1;
@@ -115,6 +104,8 @@ int main(int argc, char** argv) {
               "1-RI F", "E s", "F s", stability ? "   RI(E,E')" : "");
   double sum_agree = 0, sum_exact = 0, sum_fast = 0, time_exact = 0, time_fast = 0, sum_self = 0;
   int models = 0;
+  double limb_exact = 0, limb_fast = 0, limb_k_means = 0;
+  int limb_models = 0;
   for (const int id : ids) {
     const std::string name = std::to_string(id);
     pcl_ncut_seg::TriangleMesh mesh;
@@ -151,7 +142,10 @@ int main(int argc, char** argv) {
       if (entry.path().extension() == ".seg")
         seg_files.push_back(entry.path());
     std::sort(seg_files.begin(), seg_files.end());
-    double err_exact = 0, err_fast = 0;
+    const bool limb = std::count(kLimbModels.begin(), kLimbModels.end(), id) > 0;
+    const std::vector<int> k_means =
+        limb ? pcl_ncut_seg::test::kMeansLabels(xyz, k) : std::vector<int>();
+    double err_exact = 0, err_fast = 0, err_k_means = 0;
     for (const auto& file : seg_files) {
       std::vector<int> human_face;
       if (!pcl_ncut_seg::readSeg(file.string(), human_face) ||
@@ -164,9 +158,17 @@ int main(int argc, char** argv) {
         human[i] = human_face[face_of_point[i]];
       err_exact += 1 - randIndex(exact, human);
       err_fast += 1 - randIndex(fast, human);
+      if (limb)
+        err_k_means += 1 - randIndex(k_means, human);
     }
     err_exact /= static_cast<double>(seg_files.size());
     err_fast /= static_cast<double>(seg_files.size());
+    if (limb) {
+      limb_exact += err_exact;
+      limb_fast += err_fast;
+      limb_k_means += err_k_means / static_cast<double>(seg_files.size());
+      ++limb_models;
+    }
     const double agree = randIndex(fast, exact);
     double self = 1.0;
     if (stability) {
@@ -199,5 +201,11 @@ int main(int argc, char** argv) {
   if (stability)
     std::printf("mean Rand index between Exact and Exact on the reversed points: %.4f\n",
                 sum_self / models);
+  if (limb_models == static_cast<int>(kLimbModels.size()))
+    std::printf("limb models of test/test_psb.cpp (181-183, 381-383): mean 1-RI vs humans Fast "
+                "(default) %.4f, Exact %.4f, goal %.2f: %s; k-means with the same counts %.4f\n",
+                limb_fast / limb_models, limb_exact / limb_models, kLimbGoal,
+                limb_fast / limb_models <= kLimbGoal ? "reached" : "not reached",
+                limb_k_means / limb_models);
   return 0;
 }

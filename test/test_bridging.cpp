@@ -6,11 +6,11 @@
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "support/graphs.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -33,22 +33,9 @@ std::vector<float> twoGrids(double gap) {
   return xyz;
 }
 
-/// The symmetric kNN graph by brute force.
+/// The symmetric kNN graph by brute force (ties to the smaller index).
 CsrGraph knnGraph(const std::vector<float>& xyz, std::size_t k) {
-  const std::size_t n = xyz.size() / 3;
-  std::vector<std::uint32_t> knn(n * k);
-  for (std::size_t p = 0; p < n; ++p) {
-    std::vector<std::pair<float, std::uint32_t>> d;
-    for (std::size_t q = 0; q < n; ++q)
-      if (q != p) {
-        const float dx = xyz[3 * p] - xyz[3 * q], dy = xyz[3 * p + 1] - xyz[3 * q + 1];
-        d.emplace_back(dx * dx + dy * dy, static_cast<std::uint32_t>(q));
-      }
-    std::sort(d.begin(), d.end());
-    for (std::size_t j = 0; j < k; ++j)
-      knn[p * k + j] = d[j].second;
-  }
-  return buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
+  return buildSymmetricKnnGraph(xyz.data(), xyz.size() / 3, test::bruteForceKnn(xyz, k).data(), k);
 }
 
 std::size_t components(const CsrGraph& g) {

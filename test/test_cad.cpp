@@ -15,6 +15,7 @@
 #include "mesh_sampling.h"
 
 #include <pcl/io/pcd_io.h>
+#include <pcl/kdtree/kdtree_flann.h>
 
 #include <gtest/gtest.h>
 
@@ -34,7 +35,12 @@
 namespace {
 
 using pcl_ncut_seg::CsrGraph;
+using pcl_ncut_seg::test::CadCase;
+using pcl_ncut_seg::test::cadCases;
+using pcl_ncut_seg::test::caseName;
 using pcl_ncut_seg::test::LabeledShape;
+using pcl_ncut_seg::test::MainSegment;
+using pcl_ncut_seg::test::mainSegments;
 using pcl_ncut_seg::test::makeCadShape;
 using pcl_ncut_seg::test::randIndex;
 using pcl_ncut_seg::test::segmentsToLabels;
@@ -165,41 +171,16 @@ TEST(CadMode, SetterValidatesAndInvalidates) {
   EXPECT_FLOAT_EQ(seg.getFaceAngle(), 20.0f);
 }
 
-struct CadCase {
-  std::string shape;
-  std::size_t n;
-  /// Standard deviation per coordinate, in model units (parts are about 1 unit); the mean
-  /// nearest-neighbour spacing is 0.010-0.016 at these n, so 0.005 is 0.3-0.5 spacings and
-  /// 0.01 0.6-0.9.
-  double noise;
-};
-
-std::string caseName(const CadCase& c) {
-  return c.shape + (c.noise == 0.0 ? "_clean" : c.noise < 0.01 ? "_noisy" : "_heavy_noise");
-}
-
-/** \brief gtest prints a case by its name. */
-void PrintTo(const CadCase& c, std::ostream* os) {
-  *os << caseName(c) << " (n " << c.n << ", noise " << c.noise << ")";
-}
-
-/** \brief Cases that miss the bar today, with the reason (docs/cad.md, "Known limitations").
- * They still run and report; below the bar they are skipped with the measured value instead of
- * failing. Remove an entry once its case passes. */
-const char* knownLimitation(const std::string& name) {
-  static const std::map<std::string, const char*> known = {
-      {"triangular_prism_heavy_noise",
-       "noise of 0.7 point spacings blurs the ridges of the 60-degree edges: ridge points are "
-       "misassigned along them"},
-      {"l_block_heavy_noise",
-       "noise of 0.8 point spacings widens the ridge bands: the smallest side faces lose over "
-       "10% of their points to their neighbours"},
-      {"cylinder_heavy_noise",
-       "noise of 0.7 point spacings: the ridge band around the caps widens and its points are "
-       "split unevenly between the cap and the side"},
-  };
-  const auto it = known.find(name);
-  return it == known.end() ? nullptr : it->second;
+/** \brief The cases that reach the bar of EachFaceIsOneSegment: all but the triangular prism
+ * (Rand index 0.948), the L-block (a side face keeps 85% of its points) and the cylinder (0.938)
+ * at noise 0.01 (docs/cad.md, "Known limitations"; pcl_ncut_seg_bench_perturbation prints
+ * them). */
+std::vector<CadCase> casesAtTheBar() {
+  std::vector<CadCase> cases;
+  for (const CadCase& c : cadCases())
+    if (c.noise < 0.01 || c.shape == "cube" || c.shape == "hexagonal_prism")
+      cases.push_back(c);
+  return cases;
 }
 
 /** \brief Segment a cloud in CAD mode with the defaults. */
@@ -226,54 +207,106 @@ constexpr double kRandBar = 0.95; // each face one segment: merging two faces co
  * first failure, or an empty string. */
 std::string eachFaceHasItsSegment(const std::vector<int>& segment, const std::vector<int>& face,
                                   int num_faces, double share) {
-  std::vector<std::map<int, std::size_t>> count(num_faces);
-  std::vector<std::size_t> size(num_faces, 0);
-  for (std::size_t i = 0; i < face.size(); ++i) {
-    ++count[face[i]][segment[i]];
-    ++size[face[i]];
-  }
+  const std::vector<MainSegment> main = mainSegments(segment, face, num_faces);
   std::map<int, int> owner;
   for (int f = 0; f < num_faces; ++f) {
-    int best = -1;
-    std::size_t best_count = 0;
-    for (const auto& [s, c] : count[f])
-      if (c > best_count)
-        best = s, best_count = c;
-    if (double(best_count) < share * double(size[f]))
+    if (main[f].share < share)
       return "face " + std::to_string(f) + ": its main segment holds only " +
-             std::to_string(best_count) + " of " + std::to_string(size[f]) + " points";
-    if (owner.count(best))
-      return "faces " + std::to_string(owner[best]) + " and " + std::to_string(f) +
-             " share segment " + std::to_string(best);
-    owner[best] = f;
+             std::to_string(main[f].share) + " of its points";
+    if (owner.count(main[f].segment))
+      return "faces " + std::to_string(owner[main[f].segment]) + " and " + std::to_string(f) +
+             " share segment " + std::to_string(main[f].segment);
+    owner[main[f].segment] = f;
   }
   return "";
 }
 
+/** \brief What one case gives: labels, segments t, supernodes l (memoised: several tests look
+ * at the same case). */
+struct CadRun {
+  LabeledShape shape;
+  std::vector<int> labels;
+  std::size_t t = 0, l = 0;
+};
+
+const CadRun& run(const CadCase& c) {
+  static std::map<std::string, CadRun> cache;
+  const std::string key = caseName(c) + "_" + std::to_string(c.n);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    CadRun r;
+    r.shape = makeCadShape(c.shape, c.n, 1, c.noise);
+    r.labels = segmentCad<pcl::PointXYZ>(r.shape.cloud, &r.t, &r.l);
+    std::cout << "[ measured ] " << caseName(c) << ": n " << c.n << ", faces " << r.shape.num_parts
+              << ", supernodes l " << r.l << ", segments t " << r.t << ", Rand index "
+              << randIndex(r.labels, r.shape.labels) << std::endl;
+    it = cache.emplace(key, std::move(r)).first;
+  }
+  return it->second;
+}
+
+/** \brief For each point, whether its position before the noise is farther than `distance` from
+ * every (noise-free) sample of another face: the same samples, as the noise is added after all
+ * of them are drawn. */
+std::vector<bool> farFromOtherFaces(const CadCase& c, double distance) {
+  const LabeledShape clean = makeCadShape(c.shape, c.n, 1, 0.0);
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(clean.cloud);
+  std::vector<bool> far(clean.cloud->size(), true);
+  pcl::Indices near;
+  std::vector<float> sqr;
+  for (std::size_t i = 0; i < far.size(); ++i) {
+    tree.radiusSearch((*clean.cloud)[i], distance, near, sqr);
+    for (const auto j : near)
+      if (clean.labels[j] != clean.labels[i])
+        far[i] = false;
+  }
+  return far;
+}
+
 class CadShapes : public ::testing::TestWithParam<CadCase> {};
 
-TEST_P(CadShapes, EachFaceIsOneSegment) {
+TEST_P(CadShapes, EachFaceIsFoundAndErrorsStayNearTheRidges) {
+  // What CAD mode does on every case, up to noise of 0.6-0.9 point spacings (measured on the
+  // sampling seeds 1-5 as well, 75 runs): exactly one segment per face, each face mostly in a
+  // segment of its own, and every point that is not in its face's segment lies in the band
+  // along a ridge where noise turns the estimated normals. That band reaches 0.13 from the
+  // other faces at noise 0.01 (seeds 1-5; 0.10 with seed 1), 2.5 kNN radii (the distance to
+  // the 10th neighbour is 0.04-0.055 here); 0.15, about three, still leaves the inside of every
+  // face (of the smallest, the L-block's 0.5 x 0.4 sides, 0.2 x 0.1). How many points the band
+  // takes from its faces is what the Rand index measures: below the bar of
+  // EachFaceIsOneSegment for three of the noisiest cases, which
+  // pcl_ncut_seg_bench_perturbation prints.
   const CadCase& c = GetParam();
-  const LabeledShape shape = makeCadShape(c.shape, c.n, 1, c.noise);
-  std::size_t t = 0, l = 0;
-  const std::vector<int> labels = segmentCad<pcl::PointXYZ>(shape.cloud, &t, &l);
-  const double ri = randIndex(labels, shape.labels);
-  std::cout << "[ measured ] " << caseName(c) << ": n " << c.n << ", faces " << shape.num_parts
-            << ", supernodes l " << l << ", segments t " << t << ", Rand index " << ri << std::endl;
-  const std::string faces = eachFaceHasItsSegment(labels, shape.labels, shape.num_parts, 0.9);
-  if (const char* why = knownLimitation(caseName(c)))
-    if (ri < kRandBar || !faces.empty())
-      GTEST_SKIP() << "known limitation, measured Rand index " << ri << " (bar " << kRandBar << ")"
-                   << (faces.empty() ? "" : ", " + faces) << ": " << why;
-  EXPECT_GE(ri, kRandBar);
-  EXPECT_EQ(faces, "");
+  const CadRun& r = run(c);
+  const int faces = r.shape.num_parts;
+  EXPECT_EQ(r.t, static_cast<std::size_t>(faces));
+  // Over half of each face in one segment, and no segment the main one of two faces: with t
+  // equal to the number of faces, faces and segments pair up one to one.
+  EXPECT_EQ(eachFaceHasItsSegment(r.labels, r.shape.labels, faces, 0.5), "");
+  constexpr double kBand = 0.15;
+  const std::vector<bool> far = farFromOtherFaces(c, kBand);
+  const std::vector<MainSegment> main = mainSegments(r.labels, r.shape.labels, faces);
+  std::vector<std::size_t> inside(faces, 0), wrong(faces, 0);
+  for (std::size_t i = 0; i < far.size(); ++i)
+    if (far[i]) {
+      ++inside[r.shape.labels[i]];
+      wrong[r.shape.labels[i]] += r.labels[i] != main[r.shape.labels[i]].segment;
+    }
+  for (int f = 0; f < faces; ++f) {
+    EXPECT_GT(inside[f], 0u) << "face " << f << " has no point " << kBand << " from the others";
+    EXPECT_EQ(wrong[f], 0u) << "face " << f << ": points " << kBand
+                            << " or more from every other face outside its segment";
+  }
 }
 
 TEST_P(CadShapes, RigidMotionDoesNotChangeTheResult) {
   const CadCase& c = GetParam();
-  const LabeledShape shape = makeCadShape(c.shape, c.n, 1, c.noise);
-  std::size_t t0 = 0, t1 = 0;
-  const std::vector<int> before = segmentCad<pcl::PointXYZ>(shape.cloud, &t0);
+  const CadRun& r = run(c);
+  const LabeledShape& shape = r.shape;
+  const std::size_t t0 = r.t;
+  std::size_t t1 = 0;
+  const std::vector<int>& before = r.labels;
   const auto moved = pcl_ncut_seg::test::applyRigidMotion(*shape.cloud, 99);
   const std::vector<int> after = segmentCad<pcl::PointXYZ>(moved, &t1);
   const double same = randIndex(before, after);
@@ -284,19 +317,25 @@ TEST_P(CadShapes, RigidMotionDoesNotChangeTheResult) {
   EXPECT_GE(same, 0.99);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Parts, CadShapes,
-    ::testing::Values(CadCase{"cube", 6000, 0.0}, CadCase{"cube", 6000, 0.005},
-                      CadCase{"triangular_prism", 6000, 0.0},
-                      CadCase{"triangular_prism", 6000, 0.005},
-                      CadCase{"hexagonal_prism", 8000, 0.0},
-                      CadCase{"hexagonal_prism", 8000, 0.005}, CadCase{"l_block", 8000, 0.0},
-                      CadCase{"l_block", 8000, 0.005}, CadCase{"cylinder", 6000, 0.0},
-                      CadCase{"cylinder", 6000, 0.005}, CadCase{"cube", 6000, 0.01},
-                      CadCase{"triangular_prism", 6000, 0.01},
-                      CadCase{"hexagonal_prism", 6000, 0.01}, CadCase{"l_block", 6000, 0.01},
-                      CadCase{"cylinder", 6000, 0.01}),
-    [](const ::testing::TestParamInfo<CadCase>& info) { return caseName(info.param); });
+INSTANTIATE_TEST_SUITE_P(Parts, CadShapes, ::testing::ValuesIn(cadCases()),
+                         [](const ::testing::TestParamInfo<CadCase>& info) {
+                           return caseName(info.param);
+                         });
+
+class CadShapesAtTheBar : public ::testing::TestWithParam<CadCase> {};
+
+TEST_P(CadShapesAtTheBar, EachFaceIsOneSegment) {
+  const CadCase& c = GetParam();
+  const CadRun& r = run(c);
+  const double ri = randIndex(r.labels, r.shape.labels);
+  EXPECT_GE(ri, kRandBar);
+  EXPECT_EQ(eachFaceHasItsSegment(r.labels, r.shape.labels, r.shape.num_parts, 0.9), "");
+}
+
+INSTANTIATE_TEST_SUITE_P(Parts, CadShapesAtTheBar, ::testing::ValuesIn(casesAtTheBar()),
+                         [](const ::testing::TestParamInfo<CadCase>& info) {
+                           return caseName(info.param);
+                         });
 
 TEST(CadMode, NormalsFromTheInputAreUsed) {
   // A point type with normals: the exact face normals, on a noisy cube.

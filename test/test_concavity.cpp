@@ -6,9 +6,8 @@
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "support/knn_graph.h"
 #include "support/shapes.h"
-
-#include <pcl/kdtree/kdtree_flann.h>
 
 #include <gtest/gtest.h>
 
@@ -29,23 +28,8 @@ struct Cloud {
 /// The points of a shape and their symmetric 10-NN graph.
 Cloud knnOf(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud) {
   Cloud c;
-  const std::size_t n = cloud->size(), k = 10;
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud(cloud);
-  std::vector<std::uint32_t> knn(n * k);
-  pcl::Indices idx;
-  std::vector<float> d2;
-  for (std::size_t p = 0; p < n; ++p) {
-    tree.nearestKSearch((*cloud)[p], static_cast<int>(k + 1), idx, d2);
-    std::size_t j = 0;
-    for (const auto q : idx)
-      if (static_cast<std::size_t>(q) != p && j < k)
-        knn[p * k + j++] = static_cast<std::uint32_t>(q);
-    c.xyz.push_back((*cloud)[p].x);
-    c.xyz.push_back((*cloud)[p].y);
-    c.xyz.push_back((*cloud)[p].z);
-  }
-  c.graph = buildSymmetricKnnGraph(c.xyz.data(), n, knn.data(), k);
+  c.xyz = test::xyzOf(*cloud);
+  c.graph = test::kdTreeKnnGraph(c.xyz, 10);
   return c;
 }
 

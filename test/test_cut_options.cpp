@@ -5,20 +5,17 @@
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
 
+#include "support/graphs.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 using namespace pcl_ncut_seg;
+using test::edgeWeight;
+using test::memberGraph;
 
 namespace {
-
-double weight(const WeightedGraph& g, std::uint32_t a, std::uint32_t b) {
-  for (const auto& e : g.edges)
-    if ((e.a == a && e.b == b) || (e.a == b && e.b == a))
-      return e.w;
-  return -1;
-}
 
 // A chain of three supernodes s0 - s1 - s2 that meet at saddles, and s0 also touching s2 in
 // the kNN graph (a ring, as on a cup) without a saddle between them.
@@ -47,24 +44,6 @@ std::uint32_t m(std::size_t l, std::uint32_t s) {
   return static_cast<std::uint32_t>(l + s);
 }
 
-/// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1 and the
-/// given member-member edges.
-WeightedGraph memberGraph(std::size_t l, const std::vector<WeightedGraph::Edge>& member_edges,
-                          const std::vector<double>& member_mass = {}) {
-  WeightedGraph g;
-  g.num_vertices = 2 * l;
-  for (std::uint32_t i = 0; i < l; ++i)
-    g.edges.push_back({i, m(l, i), 1.0});
-  for (auto e : member_edges)
-    g.edges.push_back({m(l, e.a), m(l, e.b), e.w});
-  if (!member_mass.empty()) {
-    g.mass.assign(2 * l, 0.0);
-    for (std::size_t i = 0; i < l; ++i)
-      g.mass[l + i] = member_mass[i];
-  }
-  return g;
-}
-
 } // namespace
 
 TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
@@ -73,23 +52,23 @@ TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
   p.adjacency = Adjacency::Trees; // the paper's saddle edges, and the trees joined
   const WeightedGraph saddles_only =
       buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
-  EXPECT_EQ(weight(saddles_only, m(3, 0), m(3, 2)), -1) << "the paper: a tree of saddle edges";
+  EXPECT_EQ(edgeWeight(saddles_only, m(3, 0), m(3, 2)), -1) << "the paper: a tree of saddle edges";
   p.adjacency = Adjacency::All;
   p.adjacent_share = 0.0;
   const WeightedGraph all = buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
   EXPECT_EQ(all.edges.size(), saddles_only.edges.size() + 1);
   // eq. (9) with d1 = 0 (equal heights), d2 = 1 - 1/2, alpha = 0.5 (equal widths).
-  EXPECT_NEAR(weight(all, m(3, 0), m(3, 2)), std::exp(-0.5 / 0.5), 1e-12);
-  EXPECT_NEAR(weight(all, m(3, 0), m(3, 1)), weight(saddles_only, m(3, 0), m(3, 1)), 1e-15);
+  EXPECT_NEAR(edgeWeight(all, m(3, 0), m(3, 2)), std::exp(-0.5 / 0.5), 1e-12);
+  EXPECT_NEAR(edgeWeight(all, m(3, 0), m(3, 1)), edgeWeight(saddles_only, m(3, 0), m(3, 1)), 1e-15);
   // s0 and s2 touch with conn 1; each has total contact 3: joined up to a share of 1/3.
   p.adjacent_share = 0.3;
-  EXPECT_GT(
-      weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0), m(3, 2)),
-      0);
+  EXPECT_GT(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
+                       m(3, 2)),
+            0);
   p.adjacent_share = 0.5;
-  EXPECT_EQ(
-      weight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0), m(3, 2)),
-      -1);
+  EXPECT_EQ(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
+                       m(3, 2)),
+            -1);
   // Member masses are the supernodes' feature areas.
   ASSERT_EQ(all.mass.size(), 6u);
   EXPECT_EQ(all.mass[0], 0.0);

@@ -7,6 +7,8 @@
 
 #include "mesh_sampling.h"
 
+#include "support/graphs.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,26 +17,10 @@
 #include <limits>
 
 using namespace pcl_ncut_seg;
+using test::edgeWeight;
+using test::threeSupernodes;
 
 namespace {
-
-// s0 and s1 terminate at the saddle where s2 was created (Fig. 6).
-Supernodes threeSupernodes() {
-  Supernodes sn;
-  sn.label = {0, 1, 2};
-  sn.origin = {0, 1, 2};
-  sn.at_saddle = {false, false, true};
-  sn.parent = {2, 2, kNone};
-  sn.children = {{}, {}, {0, 1}};
-  return sn;
-}
-
-double weight(const WeightedGraph& g, std::uint32_t a, std::uint32_t b) {
-  for (const auto& e : g.edges)
-    if ((e.a == a && e.b == b) || (e.a == b && e.b == a))
-      return e.w;
-  return -1;
-}
 
 /// An open cup: a disc of radius 1 (the bottom) and a wall of height 2.5, as a triangle mesh.
 TriangleMesh openCup() {
@@ -96,13 +82,13 @@ TEST(FlatPatches, Eq9LeavesOutTheWidthRatioBetweenFlatSupernodes) {
   const double d1 = 2.0 / 3.0, d2 = 2.0 / 3.0;
   p.flat_elongation = 0.0; // the paper
   const WeightedGraph paper = buildSupernodeGraph(threeSupernodes(), st, conn, p);
-  EXPECT_NEAR(weight(paper, 4, 5), std::exp(-d1 / 2.0 - d2 / 0.25), 1e-12);
+  EXPECT_NEAR(edgeWeight(paper, 4, 5), std::exp(-d1 / 2.0 - d2 / 0.25), 1e-12);
   p.flat_elongation = 0.1;
   const WeightedGraph flat = buildSupernodeGraph(threeSupernodes(), st, conn, p);
-  EXPECT_NEAR(weight(flat, 4, 5), std::exp(-d1 / 2.0 - d2 / 0.5), 1e-12);
+  EXPECT_NEAR(edgeWeight(flat, 4, 5), std::exp(-d1 / 2.0 - d2 / 0.5), 1e-12);
   // The representative edges (eq. 7) do not change.
   for (std::uint32_t s = 0; s < 3; ++s)
-    EXPECT_EQ(weight(paper, s, 3 + s), weight(flat, s, 3 + s));
+    EXPECT_EQ(edgeWeight(paper, s, 3 + s), edgeWeight(flat, s, 3 + s));
 
   // An elongated supernode (a limb: its height is its length) keeps the width ratio: s1 with
   // h / sqrt(a) = 1 / sqrt(2) > 0.1.
@@ -110,7 +96,7 @@ TEST(FlatPatches, Eq9LeavesOutTheWidthRatioBetweenFlatSupernodes) {
   const double d1_limb = (1.0 - 0.04) / (1.0 - 0.01);
   p.flat_elongation = 0.1;
   const WeightedGraph limb = buildSupernodeGraph(threeSupernodes(), st, conn, p);
-  EXPECT_NEAR(weight(limb, 4, 5), std::exp(-d1_limb / 2.0 - d2 / 0.25), 1e-9); // float heights
+  EXPECT_NEAR(edgeWeight(limb, 4, 5), std::exp(-d1_limb / 2.0 - d2 / 0.25), 1e-9); // float heights
 }
 
 TEST(FlatPatches, SetterRejectsBadValues) {

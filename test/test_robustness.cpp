@@ -9,6 +9,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/graphs.h>
 #include <support/metrics.h>
+#include <support/partition.h>
 #include <support/shapes.h>
 
 #include <pcl/common/point_tests.h>
@@ -23,6 +24,7 @@
 #include <functional>
 #include <limits>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -62,41 +64,6 @@ void expectErrorAndNothing(const Seg& seg, const Extracted& r, const std::string
   EXPECT_TRUE(seg.getAnalysedIndices().empty());
 }
 
-/** Segments partition the finite points selected by `selected` (all points when null): each
- * in exactly one segment, every other point in none; segments non-empty, sorted, ordered by
- * their smallest index. Returns the label of each point (-1 for none). */
-std::vector<int> expectPartition(const Segments& segments, const Cloud& cloud,
-                                 const pcl::Indices* selected = nullptr) {
-  std::vector<char> want(cloud.size(), selected ? 0 : 1);
-  if (selected)
-    for (int i : *selected)
-      want[i] = 1;
-  std::vector<int> label(cloud.size(), -1), count(cloud.size(), 0);
-  int previous_first = -1;
-  for (std::size_t s = 0; s < segments.size(); ++s) {
-    const auto& idx = segments[s].indices;
-    EXPECT_FALSE(idx.empty()) << "segment " << s << " is empty";
-    if (idx.empty())
-      continue;
-    EXPECT_TRUE(std::is_sorted(idx.begin(), idx.end()));
-    EXPECT_GT(idx.front(), previous_first) << "segments not ordered by smallest index";
-    previous_first = idx.front();
-    for (int i : idx) {
-      EXPECT_GE(i, 0);
-      EXPECT_LT(static_cast<std::size_t>(i), cloud.size());
-      if (i < 0 || static_cast<std::size_t>(i) >= cloud.size())
-        continue;
-      ++count[i];
-      label[i] = static_cast<int>(s);
-    }
-  }
-  std::size_t wrong = 0;
-  for (std::size_t i = 0; i < cloud.size(); ++i)
-    wrong += count[i] != ((want[i] && pcl::isXYZFinite(cloud[i])) ? 1 : 0);
-  EXPECT_EQ(wrong, 0u) << "points not in exactly one segment (or segmented but not wanted)";
-  return label;
-}
-
 /** Segment `cloud` with default parameters changed by `setup`; expects no error. */
 Segments segment(const Cloud::Ptr& cloud, const std::function<void(Seg&)>& setup = nullptr) {
   Seg seg;
@@ -106,15 +73,6 @@ Segments segment(const Cloud::Ptr& cloud, const std::function<void(Seg&)>& setup
   Segments out;
   seg.extract(out);
   return out;
-}
-
-Cloud::Ptr randomCube(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  Cloud::Ptr c(new Cloud);
-  for (std::size_t i = 0; i < n; ++i)
-    c->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
-  return c;
 }
 
 Cloud::Ptr transformed(const Cloud& in, double scale, double offset) {
@@ -414,24 +372,58 @@ TEST(Robustness, ScaledModelsSegmentTheSame) {
 }
 
 TEST(Robustness, ModelFarFromTheOrigin) {
-  // The hand moved 1e4 away from the origin. The library loses nothing beyond what float
-  // coordinates at 1e4 lost already (they are 2^-10 apart there): the moved cloud segments
-  // exactly as the same points moved back in double.
+  // The hand (2.2 units tall, mean point spacing 0.02) moved away from the origin: what float
+  // coordinates there keep, the segmentation must keep.
   const LabeledShape hand = makeHand(3000, 9);
   const auto six = [](Seg& s) { s.setNumberOfSegments(6); };
+  const std::vector<int> origin = segmentsToLabels(segment(hand.cloud, six), hand.cloud->size());
+  const std::vector<int> origin_t = segmentsToLabels(segment(hand.cloud), hand.cloud->size());
+
+  // Moved by 1 and 10, the coordinates are rounded by at most 4.8e-7 (2^-21 below 16), 2.4e-5
+  // point spacings: the same segmentation, label for label. (Measured on the hands of seeds
+  // 1-20: the same for all at 10, but not for 1 of them at 100, rounded by 3.8e-6, nor for 4
+  // at 300: a change of a few 1e-4 point spacings can pick another of two nearly equal cuts.)
+  for (const double offset : {1.0, 10.0}) {
+    const Cloud::Ptr c = transformed(*hand.cloud, 1.0, offset);
+    EXPECT_EQ(expectPartition(segment(c, six), *c), origin) << offset;
+    EXPECT_EQ(expectPartition(segment(c), *c), origin_t) << offset;
+  }
+
+  // Moved by 1e4, where floats are 2^-10 apart, the points move by up to 4.9e-4. The library
+  // loses nothing beyond that rounding: the moved cloud segments exactly as the same points
+  // moved back in double.
   const Cloud::Ptr moved = transformed(*hand.cloud, 1.0, 1e4);
   const Cloud::Ptr back = transformed(*moved, 1.0, -1e4); // exact: float values near 0
   const auto labels = expectPartition(segment(moved, six), *moved);
+  const auto labels_t = expectPartition(segment(moved), *moved);
   EXPECT_EQ(labels, segmentsToLabels(segment(back, six), back->size()));
-  EXPECT_EQ(expectPartition(segment(moved), *moved), segmentsToLabels(segment(back), back->size()));
-  // Against the unrounded original.
-  const double ri = randIndex(labels, segmentsToLabels(segment(hand.cloud, six), 3000));
-  std::printf("hand moved by 1e4: Rand index vs original %.4f (6 segments)\n", ri);
-  if (ri < 0.99)
-    GTEST_SKIP() << "known limitation (README): rounding the input to floats at 1e4 moves "
-                    "points by up to 4.9e-4, and a random jitter of 5e-4 changes the "
-                    "segmentation as much (Rand index 0.93-0.98 over five seeds); Rand index "
-                 << ri << " < 0.99";
+  EXPECT_EQ(labels_t, segmentsToLabels(segment(back), back->size()));
+  // The rounding is a perturbation of the size of a random jitter of 5e-4, and on generated
+  // hands changes the segmentation about as much as such a jitter: Rand index 0.944 against
+  // the unmoved hand's, where the goal is 0.99 (README, "Known limitations";
+  // pcl_ncut_seg_bench_perturbation prints it, and the jitter). What it keeps is what matters
+  // on a hand: its palm, four fingers and thumb each keep a segment of their own holding most
+  // of their points (over half; measured at least 0.83 moved, 0.90 unmoved), with six segments
+  // asked for and with the threshold.
+  std::printf("hand moved by 1e4: Rand index vs unmoved %.4f (6 segments), %.4f (threshold)\n",
+              randIndex(labels, origin), randIndex(labels_t, origin_t));
+  const std::pair<const char*, const std::vector<int>*> runs[] = {{"unmoved, 6 segments", &origin},
+                                                                  {"unmoved, threshold", &origin_t},
+                                                                  {"moved, 6 segments", &labels},
+                                                                  {"moved, threshold", &labels_t}};
+  for (const auto& [what, run] : runs) {
+    const std::vector<MainSegment> main = mainSegments(*run, hand.labels, hand.num_parts);
+    std::set<int> own;
+    std::printf("  %s: share of each part in its main segment", what);
+    for (int part = 0; part < hand.num_parts; ++part) {
+      std::printf(" %.3f", main[part].share);
+      EXPECT_GT(main[part].share, 0.5) << what << ", part " << part;
+      own.insert(main[part].segment);
+    }
+    std::printf("\n");
+    EXPECT_EQ(own.size(), static_cast<std::size_t>(hand.num_parts))
+        << what << ": two parts share their main segment";
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

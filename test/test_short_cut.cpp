@@ -1,11 +1,12 @@
 /*
- * The short-cut stopping rule (core/short_cut.h, CutParams::neck_exponent,
+ * The short-cut stopping rule (core/short_cut.h, StoppingParams::neck_exponent,
  * SupernodeNCutSegmentation::setNeckExponent / setNeckBound).
  */
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/short_cut.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "support/graphs.h"
 #include "support/shapes.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <limits>
 
 using namespace pcl_ncut_seg;
+using test::memberGraph;
 
 namespace {
 
@@ -33,19 +35,6 @@ CsrGraph grid(int w, int h) {
         }
       g.offsets.push_back(static_cast<std::uint32_t>(g.targets.size()));
     }
-  return g;
-}
-
-/// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1 and the
-/// given member-member edges (as in test_cut_options).
-WeightedGraph memberGraph(std::size_t l, const std::vector<WeightedGraph::Edge>& member_edges) {
-  WeightedGraph g;
-  g.num_vertices = 2 * l;
-  for (std::uint32_t i = 0; i < l; ++i)
-    g.edges.push_back({i, static_cast<std::uint32_t>(l + i), 1.0});
-  for (auto e : member_edges)
-    g.edges.push_back(
-        {static_cast<std::uint32_t>(l + e.a), static_cast<std::uint32_t>(l + e.b), e.w});
   return g;
 }
 

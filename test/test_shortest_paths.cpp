@@ -10,10 +10,10 @@
 
 #include "mesh_sampling.h"
 #include "support/graphs.h"
+#include "support/knn_graph.h"
 #include "support/shapes.h"
 
 #include <pcl/io/pcd_io.h>
-#include <pcl/search/kdtree.h>
 
 #include <gtest/gtest.h>
 
@@ -35,31 +35,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 
 /// The symmetric k = 10 graph of a cloud, vertices in the cloud's order.
 CsrGraph knnGraph(const std::vector<float>& xyz) {
-  const std::size_t n = xyz.size() / 3, k = 10;
-  Cloud::Ptr cloud(new Cloud);
-  cloud->resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    (*cloud)[i] = pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  pcl::search::KdTree<pcl::PointXYZ> tree;
-  tree.setInputCloud(cloud);
-  std::vector<std::uint32_t> knn(n * k, std::numeric_limits<std::uint32_t>::max());
-  pcl::Indices nn;
-  std::vector<float> sqr;
-  for (std::size_t i = 0; i < n; ++i) {
-    tree.nearestKSearch((*cloud)[i], static_cast<int>(k + 1), nn, sqr);
-    std::size_t j = 0;
-    for (const auto q : nn)
-      if (j < k && static_cast<std::size_t>(q) != i)
-        knn[i * k + j++] = static_cast<std::uint32_t>(q);
-  }
-  return buildSymmetricKnnGraph(xyz.data(), n, knn.data(), k);
-}
-
-std::vector<float> xyzOf(const Cloud& cloud) {
-  std::vector<float> xyz;
-  for (const auto& p : cloud)
-    xyz.insert(xyz.end(), {p.x, p.y, p.z});
-  return xyz;
+  return test::kdTreeKnnGraph(xyz, 10);
 }
 
 /// Real surfaces: the bundled hand (8000 points, in file order), and 40000 samples of the
@@ -68,7 +44,7 @@ std::vector<std::vector<float>> realClouds() {
   std::vector<std::vector<float>> clouds;
   Cloud hand;
   if (pcl::io::loadPCDFile(std::string(PCL_NCUT_SEG_DATA_DIR) + "/hand.pcd", hand) == 0)
-    clouds.push_back(xyzOf(hand));
+    clouds.push_back(test::xyzOf(hand));
   const std::filesystem::path horse =
       std::filesystem::path(PCL_NCUT_SEG_SHARED_DATA) / "models" / "horse.off";
   TriangleMesh mesh;

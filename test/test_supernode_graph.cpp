@@ -6,6 +6,8 @@
 #include <cmath>
 
 using namespace pcl_ncut_seg;
+using test::edgeWeight;
+using test::threeSupernodes;
 
 TEST(Connectivity, Eq8ByHand) {
   // Path 0 - 1 - 2, unit lengths, f = 0, 0, 1; supernodes {0, 1} and {2}.
@@ -17,16 +19,7 @@ TEST(Connectivity, Eq8ByHand) {
 }
 
 namespace {
-// s0 and s1 terminate at the saddle where s2 was created (Fig. 6).
-Supernodes threeSupernodes() {
-  Supernodes sn;
-  sn.label = {0, 1, 2};
-  sn.origin = {0, 1, 2};
-  sn.at_saddle = {false, false, true};
-  sn.parent = {2, 2, kNone};
-  sn.children = {{}, {}, {0, 1}};
-  return sn;
-}
+// Features and connectivity of threeSupernodes() (Fig. 6).
 FeatureStats threeStats() {
   FeatureStats st;
   st.height = {1, 2, 4};
@@ -36,12 +29,6 @@ FeatureStats threeStats() {
 }
 Connectivity threeConn() {
   return {{{0, 0}, 4.0}, {{1, 1}, 2.0}, {{2, 2}, 8.0}, {{0, 2}, 1.0}, {{1, 2}, 3.0}};
-}
-double weight(const WeightedGraph& g, std::uint32_t a, std::uint32_t b) {
-  for (const auto& e : g.edges)
-    if ((e.a == a && e.b == b) || (e.a == b && e.b == a))
-      return e.w;
-  return -1;
 }
 } // namespace
 
@@ -53,14 +40,14 @@ TEST(SupernodeGraph, Weights7And9ByHand) {
   EXPECT_EQ(g.num_vertices, 6u);
   EXPECT_EQ(g.edges.size(), 5u); // three r-m, two m-m
   // eq. (7): exp(-(1 / (beta f_w)) (1 - conn_ii / max conn_jj)), max conn_jj = 8
-  EXPECT_NEAR(weight(g, 0, 3), std::exp(-0.125), 1e-12);
-  EXPECT_NEAR(weight(g, 1, 4), std::exp(-0.375), 1e-12);
-  EXPECT_NEAR(weight(g, 2, 5), 1.0, 1e-12);
+  EXPECT_NEAR(edgeWeight(g, 0, 3), std::exp(-0.125), 1e-12);
+  EXPECT_NEAR(edgeWeight(g, 1, 4), std::exp(-0.375), 1e-12);
+  EXPECT_NEAR(edgeWeight(g, 2, 5), 1.0, 1e-12);
   // eq. (9) for m0 - m2: d1 = 3/3, d2 = 1 - 1/3, alpha_02 = 0.5 * 2/2
-  EXPECT_NEAR(weight(g, 3, 5), std::exp(-1.0 / 2.0 - (2.0 / 3.0) / 0.5), 1e-12);
+  EXPECT_NEAR(edgeWeight(g, 3, 5), std::exp(-1.0 / 2.0 - (2.0 / 3.0) / 0.5), 1e-12);
   // m1 - m2: d1 = 2/3, d2 = 0, alpha_12 = 0.5 * 1/2
-  EXPECT_NEAR(weight(g, 4, 5), std::exp(-(2.0 / 3.0) / 2.0), 1e-12);
-  EXPECT_LT(weight(g, 3, 4), 0); // no edge between supernodes that share no saddle
+  EXPECT_NEAR(edgeWeight(g, 4, 5), std::exp(-(2.0 / 3.0) / 2.0), 1e-12);
+  EXPECT_LT(edgeWeight(g, 3, 4), 0); // no edge between supernodes that share no saddle
 }
 
 TEST(SupernodeGraph, WidthNormalisationMakesWeightsUnitFree) {
@@ -101,7 +88,7 @@ TEST(SupernodeGraph, AdjacentTreesWithoutSaddleAreJoinedAtTheirStrongestContact)
   const WeightedGraph g = buildSupernodeGraph(sn, st, conn, p);
   // A maximum spanning forest: {0, 2} then {1, 2}; {0, 1} would close a cycle.
   EXPECT_EQ(g.edges.size(), 5u);
-  EXPECT_GT(weight(g, 3, 5), 0);
-  EXPECT_GT(weight(g, 4, 5), 0);
-  EXPECT_LT(weight(g, 3, 4), 0);
+  EXPECT_GT(edgeWeight(g, 3, 5), 0);
+  EXPECT_GT(edgeWeight(g, 4, 5), 0);
+  EXPECT_LT(edgeWeight(g, 3, 4), 0);
 }

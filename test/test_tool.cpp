@@ -6,10 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/PolygonMesh.h>
 #include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
-#include <pcl/PolygonMesh.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -18,9 +18,9 @@
 #include <pcl_ncut_seg/parameter_table.h>
 
 #include <algorithm>
-#include <cstring>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -31,25 +31,19 @@
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 namespace fs = std::filesystem;
 
-using pcl_ncut_seg::test::readText;
-using pcl_ncut_seg::test::quote;
-using pcl_ncut_seg::test::listDir;
 using pcl_ncut_seg::test::lines;
+using pcl_ncut_seg::test::listDir;
+using pcl_ncut_seg::test::quote;
+using pcl_ncut_seg::test::readText;
 
 namespace {
 
 const std::string kTool = PCL_NCUT_SEG_TOOL;
 const std::string kDataDir = PCL_NCUT_SEG_DATA_DIR;
 
-struct ToolRun {
-  int status = -1; ///< exit status, or -1 if the tool did not exit normally
-  std::string out, err;
-};
+using ToolRun = pcl_ncut_seg::test::CommandRun;
 
 /** A sphere of radius 1 with three capsules (radius 0.3, length 2.2) sticking out of it along
  * +x, +y and -x: a palm with three fingers, surface points only. Deterministic. */
@@ -250,9 +244,8 @@ long printedSegments(const std::string& out) {
 class ToolTest : public ::testing::Test {
 protected:
   void SetUp() override {
-    std::string tmpl = (fs::temp_directory_path() / "pcl_ncut_seg_tool_XXXXXX").string();
-    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-    root_ = tmpl;
+    root_ = pcl_ncut_seg::test::makeTempDir("pcl_ncut_seg_tool");
+    ASSERT_FALSE(root_.empty());
     dir_ = root_ / "run";
     fs::create_directory(dir_);
     ASSERT_TRUE(fs::exists(kTool)) << kTool;
@@ -268,15 +261,9 @@ protected:
 
   /** Run the tool in dir_ with these (shell-quoted where needed) arguments. */
   ToolRun run(const std::string& args) const {
-    const fs::path out = root_ / "stdout.txt", err = root_ / "stderr.txt";
-    const std::string cmd = "cd " + quote(dir_.string()) + " && " + quote(kTool) + " " + args +
-                            " >" + quote(out.string()) + " 2>" + quote(err.string());
-    const int status = std::system(cmd.c_str());
-    ToolRun r;
-    r.status = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-    r.out = readText(out);
-    r.err = readText(err);
-    return r;
+    return pcl_ncut_seg::test::runCommand("cd " + quote(dir_.string()) + " && " + quote(kTool) +
+                                              " " + args,
+                                          root_ / "stdout.txt", root_ / "stderr.txt");
   }
 
   /** The tool failed as it should: non-zero exit, exactly one line on stderr, and the run
@@ -531,11 +518,11 @@ TEST_F(ToolTest, UnknownFlagsFailCleanly) {
 TEST_F(ToolTest, BadParameterValuesFailCleanly) {
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {"-k", "1"},        {"-k", "abc"},      {"-k", "2.5"},          {"-k", "10x"},
+      {"-k", "1"},        {"-k", "abc"},          {"-k", "2.5"},          {"-k", "10x"},
       {"-k", "''"},       {"-cen_samples", "-1"}, {"-crossing", "1.5"},   {"-crossing", "-0.1"},
-      {"-area", "2"},     {"-height", "nan"}, {"-beta", "0"},         {"-beta", "-1"},
-      {"-alpha1", "inf"}, {"-alpha2", "0"},   {"-threshold", "-0.1"}, {"-threshold", "nan"},
-      {"-segments", "0"}, {"-splits", "0"},   {"-threads", "-1"},     {"-k", "99999999999999"}};
+      {"-area", "2"},     {"-height", "nan"},     {"-beta", "0"},         {"-beta", "-1"},
+      {"-alpha1", "inf"}, {"-alpha2", "0"},       {"-threshold", "-0.1"}, {"-threshold", "nan"},
+      {"-segments", "0"}, {"-splits", "0"},       {"-threads", "-1"},     {"-k", "99999999999999"}};
   for (const auto& option_value : bad)
     expectCleanFailure("shape.pcd out.pcd " + option_value.first + " " + option_value.second,
                        option_value.first);

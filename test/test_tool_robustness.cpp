@@ -21,23 +21,18 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <random>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 namespace fs = std::filesystem;
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 using namespace pcl_ncut_seg::test;
 
-using pcl_ncut_seg::test::readText;
-using pcl_ncut_seg::test::listDir;
 using pcl_ncut_seg::test::lines;
+using pcl_ncut_seg::test::listDir;
 
 namespace {
 
@@ -58,21 +53,11 @@ std::vector<std::uint32_t> libraryLabels(const Cloud::Ptr& cloud) {
   return labels;
 }
 
-Cloud::Ptr randomCube(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  Cloud::Ptr c(new Cloud);
-  for (std::size_t i = 0; i < n; ++i)
-    c->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
-  return c;
-}
-
 class ToolRobustness : public ::testing::Test {
 protected:
   void SetUp() override {
-    std::string tmpl = (fs::temp_directory_path() / "pcl_ncut_seg_robust_XXXXXX").string();
-    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-    dir_ = tmpl;
+    dir_ = makeTempDir("pcl_ncut_seg_robust");
+    ASSERT_FALSE(dir_.empty());
     ASSERT_TRUE(fs::exists(kTool)) << kTool;
   }
   void TearDown() override {
@@ -80,24 +65,12 @@ protected:
     fs::remove_all(dir_, ec);
   }
 
-  struct Result {
-    int status = -1;
-    std::string out, err;
-  };
+  using Result = CommandRun;
 
   /** Run the tool in dir_; stdout and stderr go to files outside what the tool sees. */
   Result run(const std::string& args) const {
-    const fs::path out = dir_.string() + ".out", err = dir_.string() + ".err";
-    const std::string cmd = "cd '" + dir_.string() + "' && '" + kTool + "' " + args + " >'" +
-                            out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.status = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-    r.out = readText(out);
-    r.err = readText(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
+    return runCommand("cd '" + dir_.string() + "' && '" + kTool + "' " + args,
+                      dir_.string() + ".out", dir_.string() + ".err");
   }
 
   void save(const std::string& name, const Cloud& cloud) const {

@@ -24,23 +24,16 @@
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 namespace fs = std::filesystem;
 using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
 
-using pcl_ncut_seg::test::readText;
 using pcl_ncut_seg::test::lines;
 
 namespace {
 
 const std::string kViewer = PCL_NCUT_SEG_VIEWER;
 
-struct ViewerRun {
-  int status = -1;
-  std::string out, err;
-};
+using ViewerRun = pcl_ncut_seg::test::CommandRun;
 
 bool haveXvfbRun() {
   return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
@@ -85,9 +78,8 @@ class ViewerTest : public ::testing::Test {
 protected:
   void SetUp() override {
     ASSERT_TRUE(fs::exists(kViewer)) << kViewer;
-    std::string tmpl = (fs::temp_directory_path() / "pcl_ncut_seg_viewer_XXXXXX").string();
-    ASSERT_NE(::mkdtemp(tmpl.data()), nullptr);
-    dir_ = tmpl;
+    dir_ = pcl_ncut_seg::test::makeTempDir("pcl_ncut_seg_viewer");
+    ASSERT_FALSE(dir_.empty());
     // A hand with its fingers in one plane: seen from the front, every part is visible.
     shape_ = pcl_ncut_seg::test::makeHand(4000, 7);
     ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "hand.pcd").string(), *shape_.cloud), 0);
@@ -99,18 +91,10 @@ protected:
 
   /** Run the viewer in dir_ (under xvfb-run unless told otherwise). */
   ViewerRun run(const std::string& args, bool xvfb = true) const {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string cmd = "cd '" + dir_.string() + "' && " +
-                            (xvfb ? "xvfb-run -a " : "env -u DISPLAY ") + "'" + kViewer + "' " +
-                            args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(cmd.c_str());
-    ViewerRun r;
-    r.status = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-    r.out = readText(out);
-    r.err = readText(err);
-    fs::remove(out);
-    fs::remove(err);
-    return r;
+    return pcl_ncut_seg::test::runCommand("cd '" + dir_.string() + "' && " +
+                                              (xvfb ? "xvfb-run -a " : "env -u DISPLAY ") + "'" +
+                                              kViewer + "' " + args,
+                                          dir_ / "stdout.txt", dir_ / "stderr.txt");
   }
 
   /** The number of segments the library gives for the shape, by threshold or by count. */

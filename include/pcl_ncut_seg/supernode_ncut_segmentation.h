@@ -61,9 +61,11 @@ public:
   SupernodeNCutSegmentation();
   ~SupernodeNCutSegmentation() override;
 
-  /** \brief Provide the input cloud; invalidates the expensive stage. */
+  /** \brief Provide the input cloud; invalidates the expensive stage.
+   * \param[in] cloud  the points (NaN points are in no segment) */
   void setInputCloud(const PointCloudConstPtr& cloud) override;
-  /** \brief Restrict the segmentation to these points; invalidates the expensive stage. */
+  /** \brief Restrict the segmentation to these points; invalidates the expensive stage.
+   * \param[in] indices  indices into the input cloud (output indices still refer to it) */
   void setIndices(const IndicesPtr& indices) override;
   void setIndices(const IndicesConstPtr& indices) override;
   void setIndices(const PointIndicesConstPtr& indices) override;
@@ -71,7 +73,8 @@ public:
   /** \brief Search method for the kNN graph (default: FLANN's kd-tree with the index and
    * parameters of pcl::search::KdTree, so the same neighbours, built in extract() over a compact
    * copy of the points, queried in parallel and released once the graph is built;
-   * getSearchMethod() then returns null). */
+   * getSearchMethod() then returns null).
+   * \param[in] search  any pcl::search::Search over the input's point type */
   void setSearchMethod(const KdTreePtr& search);
   KdTreePtr getSearchMethod() const { return search_; }
 
@@ -212,14 +215,16 @@ public:
   /** \brief Called during extract() with a phase of Table 1 ("kNN", "Cen", "Snod", "LRef",
    * "HSeg") and 0 at its start, 1 at its end, and the fraction done in between where known
    * (the centrality). Always from the thread that called extract(); it must not throw.
-   * An empty function (default) turns reports off. */
+   * An empty function (default) turns reports off.
+   * \param[in] progress  called with (phase, fraction) */
   void setProgressCallback(std::function<void(const char* phase, double fraction)> progress) {
     progress_ = std::move(progress);
   }
 
   /** \brief Segment the input. Segments are ordered by their smallest point index; every
    * finite input point (within the indices) is in exactly one. On bad input, prints a
-   * PCL_ERROR and returns no segments. */
+   * PCL_ERROR and returns no segments.
+   * \param[out] segments  the segments, each a list of input indices in ascending order */
   void extract(std::vector<pcl::PointIndices>& segments);
 
   /** \brief The input cloud coloured by segment (distinct colours, the same on every run);
@@ -229,7 +234,9 @@ public:
   /** \brief The input cloud labelled by segment, 1-based; 0 for points in no segment. */
   pcl::PointCloud<pcl::PointXYZL>::Ptr getLabeledCloud() const;
 
-  /** \brief The colour of segment i (0-based) used by getColoredCloud(). */
+  /** \brief The colour of segment i (0-based) used by getColoredCloud().
+   * \param[in] i  the segment
+   * \param[out] r, g, b  its colour */
   static void segmentColor(std::size_t i, std::uint8_t& r, std::uint8_t& g, std::uint8_t& b);
 
   /// \name Intermediate results (valid after a successful extract())
@@ -242,9 +249,11 @@ public:
   /** \brief Input indices of the saddle points (Sec. 4.2 (d)). */
   std::vector<int> getSaddles() const;
   /** \brief Supernode per input point before (refined = false) or after local refinement;
-   * -1 for points not segmented. */
+   * -1 for points not segmented.
+   * \param[in] refined  after (true) or before (false) the local refinement of Sec. 4.3 */
   std::vector<int> getSupernodeLabels(bool refined) const;
-  /** \brief Number of supernodes before (m) or after (l) refinement. */
+  /** \brief Number of supernodes before (m) or after (l) refinement.
+   * \param[in] refined  after (true) or before (false) the local refinement */
   std::size_t getNumberOfSupernodes(bool refined) const;
   /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2). */
   const pcl_ncut_seg::Hierarchy& getHierarchy() const { return result_.hierarchy; }

@@ -89,14 +89,15 @@ CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& ti
   return r;
 }
 
-PreparedPoints preparePoints(const float* xyz, std::size_t n) {
+PreparedPoints preparePoints(std::vector<float> xyz) {
   PreparedPoints out;
-  DistinctMortonOrder order = distinctMortonOrder(xyz, n);
+  DistinctMortonOrder order = distinctMortonOrder(xyz.data(), xyz.size() / 3);
   const std::size_t m = order.point.size();
   out.raw.resize(3 * m);
   for (std::size_t v = 0; v < m; ++v)
     for (std::size_t d = 0; d < 3; ++d) // (no library call per point)
       out.raw[3 * v + d] = xyz[3 * std::size_t(order.point[v]) + d];
+  std::vector<float>().swap(xyz); // before the centred copy: one copy of the points less
   // Coordinates relative to the centroid, in double first, so that a model far from the
   // origin keeps its float precision.
   double c[3] = {0, 0, 0};
@@ -118,7 +119,7 @@ std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n,
                                          const Parameters& params) {
   if (n == 0 || !validate(params))
     return {};
-  PreparedPoints prepared = preparePoints(xyz, n);
+  PreparedPoints prepared = preparePoints(std::vector<float>(xyz, xyz + 3 * n));
   const std::size_t m = prepared.point.size();
   PointSet& set = prepared.set;
   set.k = std::min<std::size_t>(static_cast<std::size_t>(params.graph.k), m - 1);

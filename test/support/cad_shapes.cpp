@@ -196,5 +196,32 @@ pcl::PointCloud<pcl::PointNormal>::Ptr withFaceNormals(const std::string& name, 
   return out;
 }
 
+const std::vector<CadCase>& cadCases() {
+  static const std::vector<CadCase> cases = {{"cube", 6000, 0.0},
+                                             {"cube", 6000, 0.005},
+                                             {"triangular_prism", 6000, 0.0},
+                                             {"triangular_prism", 6000, 0.005},
+                                             {"hexagonal_prism", 8000, 0.0},
+                                             {"hexagonal_prism", 8000, 0.005},
+                                             {"l_block", 8000, 0.0},
+                                             {"l_block", 8000, 0.005},
+                                             {"cylinder", 6000, 0.0},
+                                             {"cylinder", 6000, 0.005},
+                                             {"cube", 6000, 0.01},
+                                             {"triangular_prism", 6000, 0.01},
+                                             {"hexagonal_prism", 6000, 0.01},
+                                             {"l_block", 6000, 0.01},
+                                             {"cylinder", 6000, 0.01}};
+  return cases;
+}
+
+std::string caseName(const CadCase& c) {
+  return c.shape + (c.noise == 0.0 ? "_clean" : c.noise < 0.01 ? "_noisy" : "_heavy_noise");
+}
+
+void PrintTo(const CadCase& c, std::ostream* os) {
+  *os << caseName(c) << " (n " << c.n << ", noise " << c.noise << ")";
+}
+
 } // namespace test
 } // namespace pcl_ncut_seg

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,27 @@ LabeledShape makeCadShape(const std::string& name, std::size_t n, std::uint64_t 
  * cloud gets its faces' clean normals), for the path that reads normals from the input. */
 pcl::PointCloud<pcl::PointNormal>::Ptr withFaceNormals(const std::string& name, std::size_t n,
                                                        std::uint64_t seed, double noise = 0.0);
+
+/** \brief A case of the tests (test_cad.cpp) and of pcl_ncut_seg_bench_perturbation: a part,
+ * its number of points and its noise. */
+struct CadCase {
+  std::string shape;
+  std::size_t n = 0;
+  /// Standard deviation per coordinate, in model units (parts are about 1 unit); the mean
+  /// nearest-neighbour spacing is 0.010-0.016 at these n, so 0.005 is 0.3-0.5 spacings and
+  /// 0.01 0.6-0.9.
+  double noise = 0.0;
+};
+
+/** \brief Every part clean and with noise 0.005 and 0.01 (15 cases; n 6,000, 8,000 for the
+ * hexagonal prism and the L-block below noise 0.01). */
+const std::vector<CadCase>& cadCases();
+
+/** \brief "<shape>_clean", "<shape>_noisy" (below 0.01) or "<shape>_heavy_noise". */
+std::string caseName(const CadCase& c);
+
+/** \brief gtest prints a case by its name, n and noise. */
+void PrintTo(const CadCase& c, std::ostream* os);
 
 } // namespace test
 } // namespace pcl_ncut_seg

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/supernode_graph.h>
 #include <pcl_ncut_seg/core/supernodes.h>
 
 #include <algorithm>
@@ -63,6 +64,46 @@ inline Supernodes oneSupernode(std::size_t n) {
   sn.parent = {kNone};
   sn.children = {{}};
   return sn;
+}
+
+/// Three supernodes: s0 and s1 terminate at the saddle where s2 was created (Fig. 6).
+inline Supernodes threeSupernodes() {
+  Supernodes sn;
+  sn.label = {0, 1, 2};
+  sn.origin = {0, 1, 2};
+  sn.at_saddle = {false, false, true};
+  sn.parent = {2, 2, kNone};
+  sn.children = {{}, {}, {0, 1}};
+  return sn;
+}
+
+/// The weight of the edge a-b (either way round) of a supernode graph, or -1 if there is none.
+inline double edgeWeight(const WeightedGraph& g, std::uint32_t a, std::uint32_t b) {
+  for (const auto& e : g.edges)
+    if ((e.a == a && e.b == b) || (e.a == b && e.b == a))
+      return e.w;
+  return -1;
+}
+
+/// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1, the given
+/// member-member edges (member indices 0..l-1), and, if given, the members' masses (the
+/// representatives' are 0).
+inline WeightedGraph memberGraph(std::size_t l,
+                                 const std::vector<WeightedGraph::Edge>& member_edges,
+                                 const std::vector<double>& member_mass = {}) {
+  const auto member = [l](std::uint32_t s) { return static_cast<std::uint32_t>(l + s); };
+  WeightedGraph g;
+  g.num_vertices = 2 * l;
+  for (std::uint32_t i = 0; i < l; ++i)
+    g.edges.push_back({i, member(i), 1.0});
+  for (const auto& e : member_edges)
+    g.edges.push_back({member(e.a), member(e.b), e.w});
+  if (!member_mass.empty()) {
+    g.mass.assign(2 * l, 0.0);
+    for (std::size_t i = 0; i < l; ++i)
+      g.mass[l + i] = member_mass[i];
+  }
+  return g;
 }
 
 /// n random points in the unit cube and their brute-force k nearest neighbours.

@@ -23,5 +23,24 @@ double randIndex(const std::vector<int>& a, const std::vector<int>& b);
  * \throws std::out_of_range for an index outside [0, n). */
 std::vector<int> segmentsToLabels(const std::vector<pcl::PointIndices>& segments, std::size_t n);
 
+/** \brief For one part of a truth labeling: the segment holding most of its points (-1 for a
+ * part with no point), and the share of the part's points it holds. */
+struct MainSegment {
+  int segment = -1;
+  double share = 0.0;
+};
+
+/** \brief The main segment of each part 0 .. num_parts-1 of `truth` in the labeling `labels`
+ * (ties to the smaller segment label). Points labelled negative in either are left out.
+ * \throws std::invalid_argument if the sizes differ or a truth label is num_parts or more. */
+std::vector<MainSegment> mainSegments(const std::vector<int>& labels, const std::vector<int>& truth,
+                                      int num_parts);
+
+/** \brief A baseline segmentation: k clusters of the points by position alone (k-means, Lloyd's
+ * iterations until no point changes cluster, at most `iterations`), seeded deterministically by
+ * farthest-point sampling from the first point. xyz holds 3 floats per point; returns a label
+ * 0 .. k-1 per point. k is clamped to [1, number of points]. */
+std::vector<int> kMeansLabels(const std::vector<float>& xyz, int k, int iterations = 100);
+
 } // namespace test
 } // namespace pcl_ncut_seg

@@ -335,5 +335,14 @@ double meanPointSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud) {
   return sum / finite->size();
 }
 
+pcl::PointCloud<pcl::PointXYZ>::Ptr randomCube(std::size_t n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr c(new pcl::PointCloud<pcl::PointXYZ>);
+  for (std::size_t i = 0; i < n; ++i)
+    c->push_back(pcl::PointXYZ(u(rng), u(rng), u(rng)));
+  return c;
+}
+
 } // namespace test
 } // namespace pcl_ncut_seg

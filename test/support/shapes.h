@@ -62,6 +62,10 @@ LabeledShape makeGappedBar(std::size_t n, std::uint64_t seed, double gap);
 LabeledShape makeShape(const std::string& name, std::size_t n, std::uint64_t seed,
                        const SamplingOptions& options = {});
 
+/** \brief n points drawn uniformly in the cube [-1, 1]^3 (std::uniform_real_distribution of
+ * std::mt19937_64(seed): the same on one standard library, unlike the shapes above). */
+pcl::PointCloud<pcl::PointXYZ>::Ptr randomCube(std::size_t n, std::uint64_t seed);
+
 /** \brief The cloud moved by a random rotation (uniform over rotations) and a random
  * translation with coordinates in [-10, 10], the same for a given seed. Points keep their
  * order; non-finite points stay non-finite. */

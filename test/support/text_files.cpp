@@ -1,8 +1,12 @@
 #include "support/text_files.h"
 
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace pcl_ncut_seg {
 namespace test {
@@ -36,6 +40,27 @@ std::vector<std::string> lines(const std::string& text) {
   while (std::getline(ss, line))
     result.push_back(line);
   return result;
+}
+
+CommandRun runCommand(const std::string& command, const std::filesystem::path& out,
+                      const std::filesystem::path& err) {
+  const std::string line = command + " >" + quote(out.string()) + " 2>" + quote(err.string());
+  const int status = std::system(line.c_str());
+  CommandRun r;
+  r.status = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.out = readText(out);
+  r.err = readText(err);
+  std::error_code ec;
+  std::filesystem::remove(out, ec);
+  std::filesystem::remove(err, ec);
+  return r;
+}
+
+std::filesystem::path makeTempDir(const std::string& prefix) {
+  std::string tmpl = (std::filesystem::temp_directory_path() / (prefix + "_XXXXXX")).string();
+  if (::mkdtemp(tmpl.data()) == nullptr)
+    return {};
+  return tmpl;
 }
 
 } // namespace test

@@ -112,9 +112,10 @@ struct PreparedPoints {
   std::vector<float> raw; ///< the input's x, y, z in vertex order (not centred)
 };
 
-/** \brief Order, deduplicate and centre n points (3 floats each, finite). The centroid is
- * taken in double, so that a model far from the origin keeps its float precision. */
-PreparedPoints preparePoints(const float* xyz, std::size_t n);
+/** \brief Order, deduplicate and centre points (3 floats each, finite). The centroid is
+ * taken in double, so that a model far from the origin keeps its float precision.
+ * \param[in] xyz  consumed (freed before the centred copy is made) */
+PreparedPoints preparePoints(std::vector<float> xyz);
 
 /** \brief The whole pipeline on n finite points (3 floats each) with FLANN's kd-tree for the
  * kNN graph: per point its segment in [0, t), the segments numbered by their first point.

@@ -182,17 +182,14 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   // Points at exactly the position of an earlier one are analysed once and share its segment:
   // copies would fill each other's k nearest neighbours with zero-length edges. Vertices are
   // numbered along a Morton curve (core/pipeline.h); ties and segment numbers go by input order.
-  pcl_ncut_seg::PreparedPoints prepared;
-  {
-    std::vector<float> xyz(3 * valid.size());
-    for (std::size_t i = 0; i < valid.size(); ++i) {
-      const PointT& p = (*input_)[valid[i]];
-      xyz[3 * i + 0] = p.x;
-      xyz[3 * i + 1] = p.y;
-      xyz[3 * i + 2] = p.z;
-    }
-    prepared = pcl_ncut_seg::preparePoints(xyz.data(), valid.size());
+  std::vector<float> xyz(3 * valid.size());
+  for (std::size_t i = 0; i < valid.size(); ++i) {
+    const PointT& p = (*input_)[valid[i]];
+    xyz[3 * i + 0] = p.x;
+    xyz[3 * i + 1] = p.y;
+    xyz[3 * i + 2] = p.z;
   }
+  pcl_ncut_seg::PreparedPoints prepared = pcl_ncut_seg::preparePoints(std::move(xyz));
   const std::size_t n = prepared.point.size();
   point_index_.resize(n);
   for (std::size_t v = 0; v < n; ++v)
@@ -200,6 +197,9 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   duplicates_.clear();
   for (const auto& c : prepared.copies)
     duplicates_.emplace_back(valid[c.first], c.second);
+  std::vector<int>().swap(valid); // free before the expensive stage, as the maps below
+  std::vector<std::uint32_t>().swap(prepared.point);
+  decltype(prepared.copies)().swap(prepared.copies);
 
   if (progress_)
     progress_("kNN", 0.0);
