@@ -114,13 +114,37 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
   for (const std::string& args :
        {psb, psb + " " + out + " -methods nothing", psb + " " + out + " -ids 0",
         psb + " " + out + " -threshold", (dir_ / "none").string() + " " + out,
-        psb + " " + (dir_ / "none").string(), psb + " " + out + " -k 1"}) {
+        psb + " " + (dir_ / "none").string(), psb + " " + out + " -k 1",
+        psb + " " + out + " -fractions 0.1,0.7", psb + " " + out + " -thresholds 0.1,x",
+        psb + " " + out + " -threshold 0.1 -thresholds 0.1,0.2", psb + " " + out + " -modes ,",
+        psb + " " + out + " -creasecut 2", psb + " " + out + " -crease_cut 0.1 -creasecut 0.2",
+        psb + " " + out + " -gap 1", psb + " " + out + " -neck 0",
+        psb + " " + out + " -segments 3 -thresholds 0.1,0.2", psb + " " + out + " -bogus"}) {
     EXPECT_EQ(run(args), 1) << args;
     const std::string err = stderrText();
     EXPECT_FALSE(err.empty()) << args;
     EXPECT_EQ(err.find('\n'), err.size() - 1) << "one line: " << err;
     EXPECT_TRUE(fs::is_empty(dir_ / "out")) << args;
   }
+}
+
+TEST_F(EvalTool, TakesTheToolsFlagsAndTheOldSpellings) {
+  const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
+                           " -methods ours -modes auto -quiet ";
+  // The seconds column aside, the same rows from either spelling.
+  auto withoutSeconds = [this]() {
+    std::string rows;
+    for (const auto& [key, cols] : models())
+      for (std::size_t c = 0; c < cols.size(); ++c)
+        rows += c == 6 ? "," : cols[c] + ",";
+    return rows;
+  };
+  ASSERT_EQ(run(args + "-crease_cut 0.3 -neck_exponent 2 -boundary_band 0.1 -bridge_gap 2"), 0)
+      << stderrText();
+  const std::string new_names = withoutSeconds();
+  ASSERT_EQ(run(args + "-creasecut 0.3 -neck 2 -band 0.1 -bridge 2"), 0) << stderrText();
+  EXPECT_EQ(withoutSeconds(), new_names);
+  EXPECT_FALSE(new_names.empty());
 }
 
 } // namespace

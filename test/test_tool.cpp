@@ -15,6 +15,8 @@
 
 #include "support/text_files.h"
 
+#include <pcl_ncut_seg/parameter_table.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -291,14 +293,17 @@ protected:
 TEST_F(ToolTest, HelpListsEveryOptionWithItsDefault) {
   const ToolRun r = run("-h");
   EXPECT_EQ(r.status, 0);
+  // Every parameter of the table, then the tool's own flags.
+  std::vector<std::string> options;
+  for (const pcl_ncut_seg::ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    options.push_back("-" + row.name);
   for (const char* option :
-       {"-k", "-cen_samples", "-crossing", "-area", "-height", "-beta", "-alpha1", "-alpha2",
-        "-threshold", "-segments", "-splits", "-threads", "-paper", "-samples", "-seed", "-add",
-        "-binary", "-split", "-quiet"}) {
+       {"-paper", "-exact", "-samples", "-seed", "-add", "-ascii", "-binary", "-split", "-quiet"})
+    options.push_back(option);
+  for (const std::string& option : options) {
     bool found = false;
     for (const std::string& line : lines(r.out))
-      if (line.find(std::string(option) + " ") != std::string::npos &&
-          line.find("default") != std::string::npos)
+      if (line.find(option + " ") != std::string::npos && line.find("default") != std::string::npos)
         found = true;
     EXPECT_TRUE(found) << option << " missing from the help, or without a default:\n" << r.out;
   }
@@ -411,6 +416,47 @@ TEST_F(ToolTest, AcceptsEveryOption) {
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_GE(printedSegments(r.out), 1) << r.out;
   EXPECT_TRUE(fs::exists(dir_ / "out.pcd"));
+}
+
+TEST_F(ToolTest, PaperIsAPresetTheFlagsApplyOnTop) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  // -paper is every parameter at its value in Parameters::paper(), spelt out...
+  const pcl_ncut_seg::Parameters paper = pcl_ncut_seg::Parameters::paper();
+  std::string spelt;
+  for (const pcl_ncut_seg::ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    if (row.kind != pcl_ncut_seg::ValueKind::Switch && row.name != "segments")
+      spelt += " -" + row.name + " " + row.get(paper);
+  ASSERT_EQ(run("shape.pcd paper.pcd -paper").status, 0);
+  ASSERT_EQ(run("shape.pcd spelt.pcd" + spelt).status, 0);
+  EXPECT_EQ(readText(dir_ / "paper.pcd"), readText(dir_ / "spelt.pcd"));
+  ASSERT_EQ(run("shape.pcd spelt.pcd -threshold 0.05" + spelt).status, 1) << "given twice";
+  // ... and a flag given with it changes its parameter only, wherever it stands.
+  ASSERT_EQ(run("shape.pcd paper_k.pcd -paper -k 14 -concavity 3").status, 0);
+  ASSERT_EQ(run("shape.pcd k_paper.pcd -k 14 -concavity 3 -paper").status, 0);
+  EXPECT_EQ(readText(dir_ / "paper_k.pcd"), readText(dir_ / "k_paper.pcd"));
+  std::string spelt_k = spelt;
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{" -k 10", " -k 14"},
+                                 {" -concavity off", " -concavity 3"}}) {
+    ASSERT_NE(spelt_k.find(from), std::string::npos) << spelt_k;
+    spelt_k.replace(spelt_k.find(from), from.size(), to);
+  }
+  ASSERT_EQ(run("shape.pcd spelt_k.pcd" + spelt_k).status, 0);
+  EXPECT_EQ(readText(dir_ / "paper_k.pcd"), readText(dir_ / "spelt_k.pcd"));
+  EXPECT_NE(readText(dir_ / "paper_k.pcd"), readText(dir_ / "spelt.pcd"));
+}
+
+TEST_F(ToolTest, OldSpellingsAreAliases) {
+  ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
+  ASSERT_EQ(run("shape.pcd new.pcd -crossing_fraction 0.25 -crease_split 0.5 -crease_cut 0.5 "
+                "-flat_elongation 0.2 -neck_exponent 2 -boundary_band 0.1 -centrality_samples 40")
+                .status,
+            0);
+  ASSERT_EQ(run("shape.pcd old.pcd -crossing 0.25 -crease 0.5 -creasecut 0.5 -flat 0.2 -neck 2 "
+                "-band 0.1 -cen_samples 40")
+                .status,
+            0);
+  EXPECT_EQ(readText(dir_ / "new.pcd"), readText(dir_ / "old.pcd"));
+  expectCleanFailure("shape.pcd twice.pcd -crease 0.5 -crease_split 0.5", "-crease");
 }
 
 TEST_F(ToolTest, OverwritesAnExistingOutput) {
@@ -574,12 +620,14 @@ TEST_F(ToolTest, ProgressBarOnATerminalOnly) {
   EXPECT_TRUE(fs::exists(dir_ / "out2.pcd"));
 }
 
-TEST_F(ToolTest, AsciiByDefaultBinaryOnRequest) {
+TEST_F(ToolTest, BinaryByDefaultAsciiOnRequest) {
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
-  ASSERT_EQ(run("shape.pcd ascii.pcd -segments 3 -quiet").status, 0);
-  ASSERT_EQ(run("shape.pcd binary.pcd -segments 3 -quiet -binary").status, 0);
-  EXPECT_EQ(pcdDataType(dir_ / "ascii.pcd"), "ascii");
+  ASSERT_EQ(run("shape.pcd binary.pcd -segments 3 -quiet").status, 0);
+  ASSERT_EQ(run("shape.pcd ascii.pcd -segments 3 -quiet -ascii").status, 0);
+  ASSERT_EQ(run("shape.pcd old.pcd -segments 3 -quiet -binary").status, 0); // older scripts
   EXPECT_EQ(pcdDataType(dir_ / "binary.pcd"), "binary");
+  EXPECT_EQ(pcdDataType(dir_ / "ascii.pcd"), "ascii");
+  EXPECT_EQ(readText(dir_ / "old.pcd"), readText(dir_ / "binary.pcd"));
   Output a, b;
   ASSERT_TRUE(readOutput(dir_ / "ascii.pcd", a));
   ASSERT_TRUE(readOutput(dir_ / "binary.pcd", b));
@@ -590,6 +638,7 @@ TEST_F(ToolTest, AsciiByDefaultBinaryOnRequest) {
     ASSERT_EQ(a.cloud[i].label, b.cloud[i].label);
     ASSERT_EQ(a.cloud[i].rgba & 0xFFFFFFu, b.cloud[i].rgba & 0xFFFFFFu);
   }
+  expectCleanFailure("shape.pcd both.pcd -segments 3 -ascii -binary", "-ascii");
 }
 
 TEST_F(ToolTest, AddKeepsEveryInputFieldAndAddsLabel) {
@@ -602,7 +651,7 @@ TEST_F(ToolTest, AddKeepsEveryInputFieldAndAddsLabel) {
     input.push_back(q);
   }
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "intensity.pcd").string(), input), 0);
-  const ToolRun r = run("intensity.pcd out.pcd -segments 3 -add -binary");
+  const ToolRun r = run("intensity.pcd out.pcd -segments 3 -add");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   pcl::PCLPointCloud2 blob;

@@ -7,7 +7,13 @@
  *
  * With no input, segments the bundled model armadillo.pcd and writes armadillo_segments.pcd.
  */
-#include "tool_common.h"
+#include "cli/algorithm_flags.h"
+#include "cli/console.h"
+#include "cli/flags.h"
+#include "cli/input.h"
+#include "cli/output.h"
+#include "cli/paths.h"
+#include "cli/progress.h"
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
@@ -28,23 +34,28 @@ namespace {
 /** Every flag of the tool: the algorithm's, the mesh sampling's, the output's. */
 std::vector<Flag> toolFlags() {
   std::vector<Flag> table = algorithmFlags();
-  for (const Flag& f : meshFlags())
-    table.push_back(f);
-  table.push_back(switchFlag("-add", "keep every field of the input and add label (instead of "
-                                     "writing x y z rgb label)"));
-  table.push_back(switchFlag("-binary", "write binary PCD files instead of ASCII"));
-  table.push_back(textFlag("-split", "PREFIX",
-                           "also write each segment to PREFIX_<label>.pcd (same fields)", "off"));
-  for (const Flag& f : commonFlags())
-    table.push_back(f);
+  append(table, meshFlags());
+  append(table,
+         {switchFlag("-add", "keep every field of the input and add label (instead of writing x "
+                             "y z rgb label)"),
+          switchFlag("-ascii", "write ASCII PCD files (with enough digits to read back every "
+                               "value exactly) instead of binary ones"),
+          switchFlag("-binary",
+                     "binary PCD files, the default: changes nothing, accepted for "
+                     "older scripts",
+                     ""),
+          textFlag("-split", "PREFIX",
+                   "also write each segment to PREFIX_<label>.pcd (same fields)", "off")},
+         "output");
+  append(table, commonFlags());
   return table;
 }
 
 void printHelp(const char* name) {
   print_info("Syntax is: %s [input] [output.pcd] <options>\n", name);
   print_info("Segments a point-sampled surface into parts (Yamazaki et al., \"Segmenting "
-             "Point-sampled Surfaces\") and\nwrites the points as a PCD with fields "
-             "x y z rgb label (label 1..t per segment, 0 for points in no segment).\n");
+             "Point-sampled Surfaces\") and\nwrites the points as a binary PCD (-ascii: text) with "
+             "fields x y z rgb label (label 1..t per\nsegment, 0 for points in no segment).\n");
   print_info("The input is a point cloud (.pcd, .ply) or a mesh (.off, .obj, .ply with faces); a "
              "mesh becomes one point\nper face centroid, or -samples N points sampled uniformly "
              "by area.\n");
@@ -180,67 +191,77 @@ std::string fieldNames(const pcl::PCLPointCloud2& blob) {
   return names;
 }
 
-} // namespace
+/** What the command line asks for, besides the algorithm's parameters. */
+struct Command {
+  std::string input_path, output_path, split_prefix; ///< split_prefix: "" for no -split
+  bool bundled = false;                              ///< the bundled model, for no input
+  bool keep_fields = false;                          ///< -add
+  PcdEncoding encoding = PcdEncoding::Binary;
+  MeshSampling sampling;
+};
 
-int main(int argc, char** argv) {
-  const std::vector<Flag> table = toolFlags();
-  Flags flags;
-  if (!parseFlags(argc, argv, table, flags))
-    return 1;
-  if (flags.has("-h")) {
-    printHelp(argv[0]);
-    return 0;
-  }
-  if (flags.has("-quiet")) {
-    g_quiet = true;
-    setVerbosityLevel(L_WARN);
-  }
+/** The files and the output options of the command line; false with one error line. */
+bool readCommand(const Flags& flags, Command& cmd) {
   if (flags.files.size() > 2) {
     fail("too many file arguments: expected [input] [output.pcd], got '" + flags.files[2] +
          "' as a third");
-    return 1;
+    return false;
   }
-  const bool bundled = flags.files.empty();
-  const std::string input_path = bundled ? findBundledModel() : flags.files[0];
-  if (input_path.empty())
-    return 1;
-  if (!isInputFile(input_path)) {
-    fail("input '" + input_path + "' is not a " + kInputFormats + " file");
-    return 1;
+  if (flags.has("-ascii") && flags.has("-binary")) {
+    fail("give either -ascii or -binary (the default), not both");
+    return false;
   }
-  const std::string output_path =
-      flags.files.size() == 2 ? flags.files[1] : stem(input_path) + "_segments.pcd";
-  if (extension(output_path) != ".pcd") {
-    fail("output '" + output_path + "' must be a .pcd file");
-    return 1;
+  cmd.bundled = flags.files.empty();
+  cmd.input_path = cmd.bundled ? findBundledModel() : flags.files[0];
+  if (cmd.input_path.empty())
+    return false;
+  if (!isInputFile(cmd.input_path)) {
+    fail("input '" + cmd.input_path + "' is not a " + kInputFormats + " file");
+    return false;
   }
-  Segmenter seg;
-  if (!applyAlgorithmFlags(flags, seg))
-    return 1;
-  const bool binary = flags.has("-binary"), keep_fields = flags.has("-add");
+  cmd.output_path =
+      flags.files.size() == 2 ? flags.files[1] : stem(cmd.input_path) + "_segments.pcd";
+  if (extension(cmd.output_path) != ".pcd") {
+    fail("output '" + cmd.output_path + "' must be a .pcd file");
+    return false;
+  }
+  cmd.split_prefix = flags.has("-split") ? flags.text("-split") : "";
+  cmd.keep_fields = flags.has("-add");
+  cmd.encoding = flags.has("-ascii") ? PcdEncoding::Ascii : PcdEncoding::Binary;
+  cmd.sampling = meshSampling(flags);
+  return true;
+}
 
-  ProgressBar progress(progressWanted(flags));
-  Input input;
+/** The output files, claimed before the long computation so that an unwritable destination
+ * fails first. The segment files of -split are opened when their number is known. */
+struct Outputs {
+  AtomicFile labelled;
+  std::vector<std::unique_ptr<AtomicFile>> segments;
+};
+
+bool claimOutputs(const Command& cmd, Outputs& outputs) {
+  if (!outputs.labelled.open(cmd.output_path))
+    return false;
+  AtomicFile probe; // removed at once: -split's directory is writable
+  return cmd.split_prefix.empty() || probe.open(cmd.split_prefix + "_1.pcd");
+}
+
+bool readInput(const Command& cmd, ProgressBar& progress, Input& input) {
   progress.update("Read", 0.0);
-  if (!loadInput(input_path, flags, input))
-    return 1;
+  if (!loadInput(cmd.input_path, cmd.sampling, input))
+    return false;
   progress.update("Read", 1.0);
-  // Claim the outputs now, so that an unwritable destination fails before the long computation.
-  AtomicFile output;
-  if (!output.open(output_path))
-    return 1;
-  if (flags.has("-split")) {
-    AtomicFile probe;
-    if (!probe.open(flags.text("-split") + "_1.pcd"))
-      return 1;
-  }
-  if (keep_fields && std::any_of(input.blob.fields.begin(), input.blob.fields.end(),
-                                 [](const pcl::PCLPointField& f) { return f.name == "label"; }))
-    warn("'" + input_path + "' already has a label field; -add replaces it");
+  return true;
+}
 
+/** Say what is segmented (and warn when -add replaces a label field). */
+void announceInput(const Command& cmd, const Input& input) {
+  if (cmd.keep_fields && std::any_of(input.blob.fields.begin(), input.blob.fields.end(),
+                                     [](const pcl::PCLPointField& f) { return f.name == "label"; }))
+    warn("'" + cmd.input_path + "' already has a label field; -add replaces it");
   info("Segmenting ");
-  value("%s", input_path.c_str());
-  info(bundled ? " (bundled model): " : ": ");
+  value("%s", cmd.input_path.c_str());
+  info(cmd.bundled ? " (bundled model): " : ": ");
   value("%s", input.description.c_str());
   if (input.mesh) {
     info(": ");
@@ -248,27 +269,33 @@ int main(int argc, char** argv) {
     info(" points");
   }
   info("\n");
+}
 
+/** Segment the input; false with one error line when there is no result. */
+bool segment(const Command& cmd, const Input& input, ProgressBar& progress, Segmenter& seg,
+             std::vector<pcl::PointIndices>& segments) {
   seg.setInputCloud(input.cloud);
   seg.setProgressCallback(progress.callback());
-  std::vector<pcl::PointIndices> segments;
   try {
     seg.extract(segments);
   } catch (const std::exception& e) {
     fail(std::string("segmentation failed: ") + e.what());
-    return 1;
+    return false;
   }
   if (segments.empty()) {
-    fail("segmentation of '" + input_path + "' produced no segments");
-    return 1;
+    fail("segmentation of '" + cmd.input_path + "' produced no segments");
+    return false;
   }
   const pcl::PointCloud<pcl::PointXYZL>::Ptr labeled = seg.getLabeledCloud();
   if (!labeled || labeled->size() != input.cloud->size()) {
-    fail("segmentation of '" + input_path + "' returned no labelled cloud");
-    return 1;
+    fail("segmentation of '" + cmd.input_path + "' returned no labelled cloud");
+    return false;
   }
+  return true;
+}
 
-  // Table 1 of the paper: the time of each phase, then n, m, l, t.
+/** Table 1 of the paper: the time of each phase, then n, m, l, t; and the peak memory. */
+void printReport(const Segmenter& seg, std::size_t num_segments) {
   const pcl_ncut_seg::PhaseTimes& times = seg.getPhaseTimes();
   const struct {
     const char* name;
@@ -288,7 +315,7 @@ int main(int argc, char** argv) {
   } counts[] = {{"n", seg.getAnalysedIndices().size(), "points segmented"},
                 {"m", seg.getNumberOfSupernodes(false), "supernodes"},
                 {"l", seg.getNumberOfSupernodes(true), "supernodes after refinement"},
-                {"t", segments.size(), "segments"}};
+                {"t", num_segments, "segments"}};
   for (const auto& count : counts) {
     info("%-5s: ", count.name);
     value("%zu", count.count);
@@ -297,45 +324,88 @@ int main(int argc, char** argv) {
   info("mem  : ");
   value("%.1f", static_cast<double>(peakMemoryBytes()) / (1024.0 * 1024.0));
   info(" MiB peak resident memory\n");
+}
 
-  progress.update("Write", 0.0);
-  const pcl::PCLPointCloud2 blob = makeOutput(input.blob, *labeled, keep_fields);
-  if (!writePcd(output, blob, binary))
-    return 1;
-  std::vector<std::unique_ptr<AtomicFile>> split_files;
-  if (flags.has("-split")) {
-    std::vector<std::vector<std::size_t>> members(segments.size());
-    for (std::size_t i = 0; i < labeled->size(); ++i)
-      if ((*labeled)[i].label != 0)
-        members[(*labeled)[i].label - 1].push_back(i);
-    const int digits = static_cast<int>(std::to_string(segments.size()).size());
-    for (std::size_t s = 0; s < segments.size(); ++s) {
-      char number[32];
-      std::snprintf(number, sizeof(number), "%0*zu", digits, s + 1);
-      split_files.emplace_back(new AtomicFile);
-      if (!split_files.back()->open(flags.text("-split") + "_" + number + ".pcd") ||
-          !writePcd(*split_files.back(), subset(blob, members[s]), binary))
-        return 1;
-    }
+/** -split: each segment to PREFIX_<label>.pcd, labels zero-padded to the same width. */
+bool writeSegmentFiles(const Command& cmd, const pcl::PCLPointCloud2& blob,
+                       const pcl::PointCloud<pcl::PointXYZL>& labeled, std::size_t num_segments,
+                       Outputs& outputs) {
+  std::vector<std::vector<std::size_t>> members(num_segments);
+  for (std::size_t i = 0; i < labeled.size(); ++i)
+    if (labeled[i].label != 0)
+      members[labeled[i].label - 1].push_back(i);
+  const int digits = static_cast<int>(std::to_string(num_segments).size());
+  for (std::size_t s = 0; s < num_segments; ++s) {
+    char number[32];
+    std::snprintf(number, sizeof(number), "%0*zu", digits, s + 1);
+    outputs.segments.emplace_back(new AtomicFile);
+    AtomicFile& file = *outputs.segments.back();
+    if (!file.open(cmd.split_prefix + "_" + number + ".pcd") ||
+        !writePcd(file, subset(blob, members[s]), cmd.encoding))
+      return false;
   }
-  // Every file is complete: only now do they take their names.
-  if (!output.commit())
-    return 1;
-  for (auto& file : split_files)
+  return true;
+}
+
+/** Write every output, then give them their names, only once all are complete. */
+bool writeOutputs(const Command& cmd, const Input& input,
+                  const pcl::PointCloud<pcl::PointXYZL>& labeled, std::size_t num_segments,
+                  ProgressBar& progress, Outputs& outputs) {
+  progress.update("Write", 0.0);
+  const pcl::PCLPointCloud2 blob = makeOutput(input.blob, labeled, cmd.keep_fields);
+  if (!writePcd(outputs.labelled, blob, cmd.encoding) ||
+      (!cmd.split_prefix.empty() && !writeSegmentFiles(cmd, blob, labeled, num_segments, outputs)))
+    return false;
+  if (!outputs.labelled.commit())
+    return false;
+  for (auto& file : outputs.segments)
     if (!file->commit())
-      return 1;
+      return false;
   progress.update("Write", 1.0);
   info("Wrote ");
-  value("%s", output_path.c_str());
-  info(" (%s%s)\n", fieldNames(blob).c_str(), binary ? ", binary" : "");
-  if (!split_files.empty()) {
+  value("%s", cmd.output_path.c_str());
+  info(" (%s, %s)\n", fieldNames(blob).c_str(),
+       cmd.encoding == PcdEncoding::Binary ? "binary" : "ASCII");
+  if (!outputs.segments.empty()) {
     info("Wrote ");
-    value("%zu", split_files.size());
+    value("%zu", outputs.segments.size());
     info(" segment files ");
-    value("%s", split_files.front()->path().c_str());
+    value("%s", outputs.segments.front()->path().c_str());
     info(" .. ");
-    value("%s", split_files.back()->path().c_str());
+    value("%s", outputs.segments.back()->path().c_str());
     info("\n");
   }
-  return 0;
+  return true;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  Flags flags;
+  if (!parseFlags(argc, argv, toolFlags(), flags))
+    return 1;
+  if (flags.has("-h")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  if (flags.has("-quiet")) {
+    g_quiet = true;
+    setVerbosityLevel(L_WARN);
+  }
+  Command cmd;
+  Segmenter seg;
+  if (!readCommand(flags, cmd) || !applyAlgorithmFlags(flags, seg))
+    return 1;
+  ProgressBar progress(progressWanted(flags));
+  Input input;
+  Outputs outputs;
+  std::vector<pcl::PointIndices> segments;
+  if (!readInput(cmd, progress, input) || !claimOutputs(cmd, outputs))
+    return 1;
+  announceInput(cmd, input);
+  if (!segment(cmd, input, progress, seg, segments))
+    return 1;
+  printReport(seg, segments.size());
+  return writeOutputs(cmd, input, *seg.getLabeledCloud(), segments.size(), progress, outputs) ? 0
+                                                                                              : 1;
 }

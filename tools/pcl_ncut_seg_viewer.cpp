@@ -7,7 +7,13 @@
  *   pcl_ncut_seg_viewer [input] [options]
  *   pcl_ncut_seg_viewer [input] -screenshot out.png [-view name|all] [-size WxH]
  */
-#include "tool_common.h"
+#include "cli/algorithm_flags.h"
+#include "cli/console.h"
+#include "cli/flags.h"
+#include "cli/input.h"
+#include "cli/output.h"
+#include "cli/paths.h"
+#include "cli/progress.h"
 
 #include <pcl/console/print.h>
 #include <pcl/visualization/pcl_visualizer.h>
@@ -35,6 +41,7 @@ using namespace pcl_ncut_seg::tool;
 namespace {
 
 using ColorCloud = pcl::PointCloud<pcl::PointXYZRGB>;
+using pcl_ncut_seg::StoppingRule;
 
 /** What can be shown. Coarser and finer are the segments of a cut with one segment less or
  * more than the first cut, from the same expensive stage. */
@@ -60,28 +67,101 @@ constexpr std::uint8_t kSaddleRgb[3] = {255, 0, 255};    // saddles: magenta
 constexpr double kBackground = 0.12;                     // dark grey
 constexpr double kText = 0.85; // light grey: text never takes a marker's or a segment's colour
 
+/** "+x" .. "-z" as a unit vector; false for another text. */
+bool upAxis(const std::string& text, Eigen::Vector3d& up) {
+  if (text.size() != 2 || (text[0] != '+' && text[0] != '-') || text[1] < 'x' || text[1] > 'z')
+    return false;
+  up = Eigen::Vector3d::Zero();
+  up(text[1] - 'x') = text[0] == '+' ? 1.0 : -1.0;
+  return true;
+}
+
+/** "WxH" with each side in [16, 8192]; false for another text. */
+bool windowSize(const std::string& text, int& width, int& height) {
+  char x = 0;
+  std::istringstream in(text);
+  return in >> width >> x >> height && x == 'x' && in.eof() && width >= 16 && height >= 16 &&
+         width <= 8192 && height <= 8192;
+}
+
+/** The views -view names ("all": every view); empty for an unknown name. */
+std::vector<View> namedViews(const std::string& name) {
+  std::vector<View> views;
+  for (const auto& v : kViews)
+    if (name == "all" || name == v.name)
+      views.push_back(v.view);
+  return views;
+}
+
+/** The keys of -keys, split at spaces; false for a key the viewer does not know. */
+bool pressedKeys(const std::string& text, std::vector<std::string>& keys) {
+  std::istringstream in(text);
+  for (std::string key; in >> key;) {
+    if (key != "1" && key != "2" && key != "3" && key != "4" && key != "Up" && key != "Down" &&
+        key != "h")
+      return false;
+    keys.push_back(key);
+  }
+  return true;
+}
+
+/** A flag's check from a parser of its value. */
+template <typename Parse>
+std::function<bool(const std::string&, std::string*)> checkWith(Parse parse,
+                                                                const std::string& expected) {
+  return [parse, expected](const std::string& text, std::string* why) {
+    if (parse(text))
+      return true;
+    *why = "expected " + expected;
+    return false;
+  };
+}
+
 std::vector<Flag> viewerFlags() {
   std::vector<Flag> table = algorithmFlags();
-  for (const Flag& f : meshFlags())
-    table.push_back(f);
-  table.push_back(textFlag("-screenshot", "FILE.png",
-                           "render off-screen to FILE.png and exit (needs an X display: run "
-                           "under xvfb-run -a)"));
-  table.push_back(textFlag("-view", "NAME",
-                           "the view of -screenshot: segments, centrality, supernodes, refined, "
-                           "coarser, finer, or all (FILE_<view>.png each)",
-                           "segments"));
-  table.push_back(textFlag("-keys", "\"K1 K2 ...\"",
-                           "with -screenshot: press these keys (1, 2, 3, 4, Up, Down, h) before "
-                           "each view is taken"));
-  table.push_back(textFlag("-size", "WxH", "window or screenshot size in pixels", "640x480"));
-  table.push_back(textFlag("-up", "AXIS",
-                           "the model's axis that points up on screen: +x, -x, +y, -y, +z or -z; "
-                           "the camera looks from the side of least extent",
-                           "the middle principal axis"));
-  table.push_back(intFlag("-point_size", "P", "point size in pixels, >= 1", "3", 1, 50));
-  for (const Flag& f : commonFlags())
-    table.push_back(f);
+  append(table, meshFlags());
+  append(table,
+         {textFlag("-screenshot", "FILE.png",
+                   "render off-screen to FILE.png and exit (needs an X display: run under "
+                   "xvfb-run -a)"),
+          textFlag("-view", "NAME",
+                   "the view of -screenshot: segments, centrality, supernodes, refined, coarser, "
+                   "finer, or all (FILE_<view>.png each)",
+                   "segments"),
+          textFlag("-keys", "\"K1 K2 ...\"",
+                   "with -screenshot: press these keys (1, 2, 3, 4, Up, Down, h) before each "
+                   "view is taken"),
+          textFlag("-size", "WxH", "window or screenshot size in pixels", "640x480"),
+          textFlag("-up", "AXIS",
+                   "the model's axis that points up on screen: +x, -x, +y, -y, +z or -z; the "
+                   "camera looks from the side of least extent",
+                   "the middle principal axis"),
+          intFlag("-point_size", "P", "point size in pixels, >= 1", "3", 1, 50)},
+         "viewer");
+  findFlag(table, "-view")->check =
+      checkWith([](const std::string& t) { return !namedViews(t).empty(); },
+                "segments, centrality, supernodes, refined, coarser, finer or all");
+  findFlag(table, "-keys")->check = checkWith(
+      [](const std::string& t) {
+        std::vector<std::string> keys;
+        return pressedKeys(t, keys);
+      },
+      "keys among 1, 2, 3, 4, Up, Down and h");
+  findFlag(table, "-size")->check = checkWith(
+      [](const std::string& t) {
+        int width = 0, height = 0;
+        return windowSize(t, width, height);
+      },
+      "WxH, e.g. 640x480, each side in [16, 8192]");
+  findFlag(table, "-up")->check = checkWith(
+      [](const std::string& t) {
+        Eigen::Vector3d up;
+        return upAxis(t, up);
+      },
+      "+x, -x, +y, -y, +z or -z");
+  findFlag(table, "-screenshot")->check =
+      checkWith([](const std::string& t) { return extension(t) == ".png"; }, "a .png file");
+  append(table, commonFlags());
   return table;
 }
 
@@ -119,10 +199,8 @@ public:
       return false;
     first_segments_ = segments.size();
     current_segments_ = segments.size();
-    first_threshold_ = seg_.getThreshold();
-    largest_gap_ = seg_.getLargestGapStopping();
-    short_cut_ = largest_gap_ && seg_.getNeckExponent() > 0.0;
-    by_number_ = seg_.getNumberOfSegments() > 0;
+    first_threshold_ = seg_.getParameters().stopping.threshold;
+    first_rule_ = seg_.getParameters().stopping.rule;
     colored_ = seg_.getColoredCloud();
     return true;
   }
@@ -158,10 +236,10 @@ public:
     ColorCloud::Ptr out(new ColorCloud(*colored_));
     if (view == View::Segments || view == View::Coarser || view == View::Finer) {
       t << "Segments: t = " << current_segments_;
-      if (current_segments_ == first_segments_ && !by_number_)
-        t << (short_cut_     ? " (short-cut rule, NCut <= "
-              : largest_gap_ ? " (largest NCut gap, NCut <= "
-                             : " (NCut threshold ")
+      if (current_segments_ == first_segments_ && first_rule_ != StoppingRule::Count)
+        t << (first_rule_ == StoppingRule::ShortCut     ? " (short-cut rule, NCut <= "
+              : first_rule_ == StoppingRule::LargestGap ? " (largest NCut gap, NCut <= "
+                                                        : " (NCut threshold ")
           << first_threshold_ << ")";
       else if (current_segments_ != first_segments_)
         t << " (hierarchy, " << (current_segments_ > first_segments_ ? "finer" : "coarser")
@@ -241,9 +319,7 @@ private:
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr colored_;
   std::size_t first_segments_ = 0, current_segments_ = 0;
   double first_threshold_ = 0;
-  bool largest_gap_ = false;
-  bool short_cut_ = false;
-  bool by_number_ = false;
+  StoppingRule first_rule_ = StoppingRule::ShortCut; ///< of the first cut
   bool reused_ = true;
 };
 
@@ -352,16 +428,6 @@ void placeCamera(pcl::visualization::PCLVisualizer& viewer,
   viewer.resetCamera(); // fit the cloud, keeping the direction
 }
 
-bool parseUp(const std::string& text, Eigen::Vector3d& up) {
-  if (text.size() == 2 && (text[0] == '+' || text[0] == '-') && text[1] >= 'x' && text[1] <= 'z') {
-    up = Eigen::Vector3d::Zero();
-    up(text[1] - 'x') = text[0] == '+' ? 1.0 : -1.0;
-    return true;
-  }
-  fail("bad value '" + text + "' for -up: expected +x, -x, +y, -y, +z or -z");
-  return false;
-}
-
 /** What a key does (the window's keys, and -keys of -screenshot); false for another key. */
 bool pressKey(const std::string& key, Scene& scene, Drawer& drawer, bool print_keys) {
   if (key == "1") {
@@ -393,17 +459,6 @@ bool pressKey(const std::string& key, Scene& scene, Drawer& drawer, bool print_k
   return true;
 }
 
-bool parseSize(const std::string& text, int& width, int& height) {
-  char x = 0;
-  std::istringstream in(text);
-  if (!(in >> width >> x >> height) || x != 'x' || !in.eof() || width < 16 || height < 16 ||
-      width > 8192 || height > 8192) {
-    fail("bad value '" + text + "' for -size: expected WxH, e.g. 640x480");
-    return false;
-  }
-  return true;
-}
-
 /** Render the window and write it as a PNG, in one step (no partial file on failure). */
 bool writeScreenshot(pcl::visualization::PCLVisualizer& viewer, const std::string& path) {
   AtomicFile file;
@@ -429,151 +484,150 @@ bool writeScreenshot(pcl::visualization::PCLVisualizer& viewer, const std::strin
 
 } // namespace
 
-int main(int argc, char** argv) {
-  const std::vector<Flag> table = viewerFlags();
-  Flags flags;
-  if (!parseFlags(argc, argv, table, flags))
-    return 1;
-  if (flags.has("-h")) {
-    printHelp(argv[0]);
-    return 0;
-  }
-  const bool quiet = flags.has("-quiet");
-  if (quiet)
-    setVerbosityLevel(L_WARN);
+namespace {
+
+/** What the viewer's command line asks for, besides the algorithm's parameters. */
+struct ViewerOptions {
+  std::string input_path;
+  MeshSampling sampling;
+  std::string shot;        ///< -screenshot: the PNG to write; "" for the window
+  std::vector<View> views; ///< -view
+  std::vector<std::string> keys;
+  int width = 640, height = 480, point_size = 3;
+  bool has_up = false;
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  bool quiet = false;
+};
+
+/** The viewer's options from the flags (whose values the table has checked); false with one
+ * error line when they do not go together or there is no display. */
+bool readOptions(const Flags& flags, ViewerOptions& o) {
   if (flags.files.size() > 1) {
     fail("too many file arguments: expected one input, got '" + flags.files[1] + "' as a second");
-    return 1;
+    return false;
   }
-  const bool screenshot = flags.has("-screenshot");
-  if (flags.has("-view") && !screenshot) {
-    fail("-view chooses the view of -screenshot; in the window, press h for the keys");
-    return 1;
-  }
-  std::vector<View> views;
-  const std::string view_name = flags.has("-view") ? flags.text("-view") : "segments";
-  for (const auto& v : kViews)
-    if (view_name == "all" || view_name == v.name)
-      views.push_back(v.view);
-  if (views.empty()) {
-    fail("unknown view '" + view_name +
-         "' for -view: expected segments, centrality, supernodes, refined, coarser, finer or all");
-    return 1;
-  }
-  std::string shot;
-  if (screenshot) {
-    shot = flags.text("-screenshot");
-    if (extension(shot) != ".png") {
-      fail("screenshot '" + shot + "' must be a .png file");
-      return 1;
+  o.shot = flags.has("-screenshot") ? flags.text("-screenshot") : "";
+  for (const char* only_shot : {"-view", "-keys"})
+    if (flags.has(only_shot) && o.shot.empty()) {
+      fail(std::string(only_shot) + " goes with -screenshot; in the window, press h for the keys");
+      return false;
     }
-  }
-  std::vector<std::string> keys;
-  if (flags.has("-keys")) {
-    if (!screenshot) {
-      fail("-keys presses keys before -screenshot; without it, press them in the window");
-      return 1;
-    }
-    std::istringstream in(flags.text("-keys"));
-    for (std::string key; in >> key;)
-      keys.push_back(key);
-    for (const std::string& key : keys)
-      if (key != "1" && key != "2" && key != "3" && key != "4" && key != "Up" && key != "Down" &&
-          key != "h") {
-        fail("unknown key '" + key + "' in -keys: expected 1, 2, 3, 4, Up, Down or h");
-        return 1;
-      }
-  }
-  int width = 640, height = 480;
-  if (flags.has("-size") && !parseSize(flags.text("-size"), width, height))
-    return 1;
-  Eigen::Vector3d up_axis;
-  if (flags.has("-up") && !parseUp(flags.text("-up"), up_axis))
-    return 1;
-  const Eigen::Vector3d* up = flags.has("-up") ? &up_axis : nullptr;
-  const int point_size =
-      flags.has("-point_size") ? static_cast<int>(flags.integer("-point_size")) : 3;
+  o.views = namedViews(flags.has("-view") ? flags.text("-view") : "segments");
+  if (flags.has("-keys"))
+    pressedKeys(flags.text("-keys"), o.keys);
+  if (flags.has("-size"))
+    windowSize(flags.text("-size"), o.width, o.height);
+  o.has_up = flags.has("-up") && upAxis(flags.text("-up"), o.up);
+  if (flags.has("-point_size"))
+    o.point_size = static_cast<int>(flags.integer("-point_size"));
+  o.quiet = flags.has("-quiet");
+  o.sampling = meshSampling(flags);
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display) {
     fail(std::string("no X display (DISPLAY is not set): ") +
-         (screenshot ? "run under xvfb-run -a"
-                     : "run on a desktop, or use -screenshot under "
-                       "xvfb-run -a"));
-    return 1;
+         (o.shot.empty() ? "run on a desktop, or use -screenshot under xvfb-run -a"
+                         : "run under xvfb-run -a"));
+    return false;
   }
-  Segmenter seg;
-  if (!applyAlgorithmFlags(flags, seg))
-    return 1;
+  o.input_path = flags.files.empty() ? findBundledModel() : flags.files[0];
+  return !o.input_path.empty();
+}
 
-  const std::string input_path = flags.files.empty() ? findBundledModel() : flags.files[0];
-  if (input_path.empty())
-    return 1;
-  Input input;
-  Scene scene(seg);
-  {
-    ProgressBar progress(progressWanted(flags));
-    progress.update("Read", 0.0);
-    if (!loadInput(input_path, flags, input))
-      return 1;
-    progress.update("Read", 1.0);
-    seg.setInputCloud(input.cloud);
-    seg.setProgressCallback(progress.callback());
-    if (!scene.segment()) {
-      fail("segmentation of '" + input_path + "' produced no segments");
-      return 1;
-    }
-    seg.setProgressCallback({});
+/** Read the input and make the first cut, with a progress bar. */
+bool segmentInput(const ViewerOptions& o, bool progress_wanted, Segmenter& seg, Scene& scene,
+                  Input& input) {
+  ProgressBar progress(progress_wanted);
+  progress.update("Read", 0.0);
+  if (!loadInput(o.input_path, o.sampling, input))
+    return false;
+  progress.update("Read", 1.0);
+  seg.setInputCloud(input.cloud);
+  seg.setProgressCallback(progress.callback());
+  if (!scene.segment()) {
+    fail("segmentation of '" + o.input_path + "' produced no segments");
+    return false;
   }
-  if (!quiet)
-    print_info("%s: %s, %zu segments\n", input_path.c_str(), input.description.c_str(),
+  seg.setProgressCallback({});
+  if (!o.quiet)
+    print_info("%s: %s, %zu segments\n", o.input_path.c_str(), input.description.c_str(),
                scene.firstSegments());
+  return true;
+}
 
-  if (screenshot) {
-    pcl::visualization::PCLVisualizer viewer("pcl_ncut_seg_viewer", false);
-    viewer.getRenderWindow()->SetOffScreenRendering(1);
-    viewer.setSize(width, height);
-    viewer.setBackgroundColor(kBackground, kBackground, kBackground);
-    viewer.setShowFPS(false);
-    Drawer drawer(viewer, scene, point_size, width, height);
-    drawer.show(View::Segments);
-    placeCamera(viewer, *input.cloud, up);
-    for (View view : views) {
-      // One view: the file as given; all: FILE_<view>.png beside it.
-      const std::string path =
-          views.size() == 1 ? shot
-                            : shot.substr(0, shot.size() - 4) + "_" + viewName(view) + ".png";
-      if (view == View::Coarser || view == View::Finer) {
-        const std::size_t want =
-            view == View::Finer ? scene.firstSegments() + 1 : scene.firstSegments() - 1;
-        if (!scene.cutInto(want))
-          warn(std::string("no ") + viewName(view) + " cut with " + std::to_string(want) +
-               " segments; showing " + std::to_string(scene.currentSegments()));
-      } else if (scene.currentSegments() != scene.firstSegments()) {
-        scene.cutInto(scene.firstSegments());
-      }
-      drawer.hideKeys();
-      drawer.show(view);
-      for (const std::string& key : keys)
-        pressKey(key, scene, drawer, false);
-      if (!writeScreenshot(viewer, path))
-        return 1;
-      if (!quiet)
-        print_info("Wrote %s (%s, %zu segments)\n", path.c_str(), viewName(view),
-                   scene.currentSegments());
-    }
-    return 0;
-  }
-
-  pcl::visualization::PCLVisualizer viewer("pcl_ncut_seg_viewer: " + input_path);
-  viewer.setSize(width, height);
+/** -screenshot: each view of -view rendered off-screen to its PNG. */
+bool takeScreenshots(const ViewerOptions& o, Scene& scene, const Input& input) {
+  pcl::visualization::PCLVisualizer viewer("pcl_ncut_seg_viewer", false);
+  viewer.getRenderWindow()->SetOffScreenRendering(1);
+  viewer.setSize(o.width, o.height);
   viewer.setBackgroundColor(kBackground, kBackground, kBackground);
-  Drawer drawer(viewer, scene, point_size, width, height);
+  viewer.setShowFPS(false);
+  Drawer drawer(viewer, scene, o.point_size, o.width, o.height);
   drawer.show(View::Segments);
-  placeCamera(viewer, *input.cloud, up);
+  placeCamera(viewer, *input.cloud, o.has_up ? &o.up : nullptr);
+  for (View view : o.views) {
+    // One view: the file as given; all: FILE_<view>.png beside it.
+    const std::string path =
+        o.views.size() == 1 ? o.shot
+                            : o.shot.substr(0, o.shot.size() - 4) + "_" + viewName(view) + ".png";
+    if (view == View::Coarser || view == View::Finer) {
+      const std::size_t want =
+          view == View::Finer ? scene.firstSegments() + 1 : scene.firstSegments() - 1;
+      if (!scene.cutInto(want))
+        warn(std::string("no ") + viewName(view) + " cut with " + std::to_string(want) +
+             " segments; showing " + std::to_string(scene.currentSegments()));
+    } else if (scene.currentSegments() != scene.firstSegments()) {
+      scene.cutInto(scene.firstSegments());
+    }
+    drawer.hideKeys();
+    drawer.show(view);
+    for (const std::string& key : o.keys)
+      pressKey(key, scene, drawer, false);
+    if (!writeScreenshot(viewer, path))
+      return false;
+    if (!o.quiet)
+      print_info("Wrote %s (%s, %zu segments)\n", path.c_str(), viewName(view),
+                 scene.currentSegments());
+  }
+  return true;
+}
+
+/** The window, until the user closes it. */
+void showWindow(const ViewerOptions& o, Scene& scene, const Input& input) {
+  pcl::visualization::PCLVisualizer viewer("pcl_ncut_seg_viewer: " + o.input_path);
+  viewer.setSize(o.width, o.height);
+  viewer.setBackgroundColor(kBackground, kBackground, kBackground);
+  Drawer drawer(viewer, scene, o.point_size, o.width, o.height);
+  drawer.show(View::Segments);
+  placeCamera(viewer, *input.cloud, o.has_up ? &o.up : nullptr);
   viewer.registerKeyboardCallback([&](const pcl::visualization::KeyboardEvent& event) {
     if (event.keyDown())
       pressKey(event.getKeySym(), scene, drawer, true);
   });
   viewer.spin();
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  Flags flags;
+  if (!parseFlags(argc, argv, viewerFlags(), flags))
+    return 1;
+  if (flags.has("-h")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  if (flags.has("-quiet"))
+    setVerbosityLevel(L_WARN);
+  ViewerOptions options;
+  Segmenter seg;
+  if (!readOptions(flags, options) || !applyAlgorithmFlags(flags, seg))
+    return 1;
+  Input input;
+  Scene scene(seg);
+  if (!segmentInput(options, progressWanted(flags), seg, scene, input))
+    return 1;
+  if (!options.shot.empty())
+    return takeScreenshots(options, scene, input) ? 0 : 1;
+  showWindow(options, scene, input);
   return 0;
 }

@@ -1,0 +1,25 @@
+#include "cli/console.h"
+
+#include <pcl/console/print.h>
+
+namespace pcl_ncut_seg {
+namespace tool {
+
+void fail(const std::string& message) {
+  pcl::console::print_error("Error: %s\n", message.c_str());
+}
+
+void warn(const std::string& message) {
+  pcl::console::print_warn("Warning: %s\n", message.c_str());
+}
+
+SilencePcl::SilencePcl() : level_(pcl::console::getVerbosityLevel()) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+}
+
+SilencePcl::~SilencePcl() {
+  pcl::console::setVerbosityLevel(static_cast<pcl::console::VERBOSITY_LEVEL>(level_));
+}
+
+} // namespace tool
+} // namespace pcl_ncut_seg

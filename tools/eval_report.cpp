@@ -1,0 +1,198 @@
+#include "eval_report.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <tuple>
+
+namespace pcl_ncut_seg {
+namespace eval {
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+namespace {
+
+const char* kMetricNames[] = {"1 - RI", "Hamming", "Rm", "Rf", "GCE", "LCE"};
+
+double metric(const SegmentationScores& s, int m) {
+  const double v[] = {s.rand_index_error, s.hamming, s.hamming_rm, s.hamming_rf, s.gce, s.lce};
+  return v[m];
+}
+
+/** The mean of rows. */
+struct Mean {
+  SegmentationScores scores;
+  double segments = 0, seconds = 0;
+  std::size_t models = 0;
+  void add(const Row& r) {
+    scores += r.scores;
+    segments += r.segments;
+    seconds += r.seconds;
+    ++models;
+  }
+  Mean result() const {
+    Mean m = *this;
+    const double d = static_cast<double>(std::max<std::size_t>(models, 1));
+    m.scores = scores / d;
+    m.segments = segments / d;
+    m.seconds = seconds / d;
+    return m;
+  }
+};
+
+/** Means per (mode, method, category); "Overall" = over every model. */
+using Means = std::map<std::tuple<std::string, std::string, std::string>, Mean>;
+
+Means means(const Report& report) {
+  Means out;
+  for (const Row& r : report.rows) {
+    out[{r.mode, r.method, r.category}].add(r);
+    out[{r.mode, r.method, "Overall"}].add(r);
+  }
+  return out;
+}
+
+/** The methods in the order of their first row (ours first, then peers as given). */
+std::vector<std::string> methods(const Report& report) {
+  std::vector<std::string> out;
+  for (const Row& r : report.rows)
+    if (std::find(out.begin(), out.end(), r.method) == out.end())
+      out.push_back(r.method);
+  return out;
+}
+
+/** The categories of the models in order of their first model, then "Overall". */
+std::vector<std::string> categoriesAndOverall(const Report& report) {
+  std::vector<std::string> out;
+  for (const int id : report.ids) {
+    const std::string c = psbCategory(id);
+    if (std::find(out.begin(), out.end(), c) == out.end())
+      out.push_back(c);
+  }
+  out.push_back("Overall");
+  return out;
+}
+
+/** One mode's overall table. */
+void overallTable(const Report& report, const Means& all, const std::string& mode,
+                  std::ostringstream& md) {
+  md << "\n### " << (mode == "auto" ? "Automatic mode" : "Given number of segments")
+     << ": overall (" << report.ids.size() << " models)\n\n";
+  md << "| method | 1 - RI | Hamming | Rm | Rf | GCE | LCE | segments | s / model |\n";
+  md << "|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& method : methods(report)) {
+    const auto it = all.find({mode, method, "Overall"});
+    if (it == all.end())
+      continue;
+    const Mean m = it->second.result();
+    md << "| " << method;
+    for (int k = 0; k < 6; ++k)
+      md << " | " << fixed(metric(m.scores, k));
+    md << " | " << fixed(m.segments, 1) << " | " << fixed(m.seconds, 2) << " |\n";
+  }
+}
+
+/** One mode's table of a metric per category. */
+void categoryTable(const Report& report, const Means& all, const std::string& mode, int k,
+                   std::ostringstream& md) {
+  const std::vector<std::string> method_list = methods(report);
+  md << "\n#### " << (mode == "auto" ? "Automatic" : "Given count") << ": " << kMetricNames[k]
+     << " per category\n\n| category |";
+  for (const auto& method : method_list)
+    md << ' ' << method << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < method_list.size(); ++i)
+    md << "---|";
+  md << '\n';
+  for (const auto& c : categoriesAndOverall(report)) {
+    md << "| " << (c == "Overall" ? "**Overall**" : c) << " |";
+    for (const auto& method : method_list) {
+      const auto it = all.find({mode, method, c});
+      md << ' ' << (it == all.end() ? "" : fixed(metric(it->second.result().scores, k))) << " |";
+    }
+    md << '\n';
+  }
+}
+
+} // namespace
+
+std::string modelsCsv(const Report& report) {
+  std::ostringstream csv;
+  csv << "method,mode,id,category,faces,segments,seconds,one_minus_rand_index,hamming,"
+         "hamming_rm,hamming_rf,gce,lce,human_segmentations\n";
+  for (const Row& r : report.rows)
+    csv << '"' << r.method << "\"," << r.mode << ',' << r.id << ',' << r.category << ',' << r.faces
+        << ',' << r.segments << ',' << fixed(r.seconds, 4) << ','
+        << fixed(r.scores.rand_index_error, 6) << ',' << fixed(r.scores.hamming, 6) << ','
+        << fixed(r.scores.hamming_rm, 6) << ',' << fixed(r.scores.hamming_rf, 6) << ','
+        << fixed(r.scores.gce, 6) << ',' << fixed(r.scores.lce, 6) << ',' << r.humans << '\n';
+  return csv.str();
+}
+
+std::string categoriesCsv(const Report& report) {
+  const Means all = means(report);
+  std::ostringstream csv;
+  csv << "method,mode,category,models,segments,seconds,one_minus_rand_index,hamming,"
+         "hamming_rm,hamming_rf,gce,lce\n";
+  for (const auto& mode : report.modes)
+    for (const auto& method : methods(report))
+      for (const auto& c : categoriesAndOverall(report)) {
+        const auto it = all.find({mode, method, c});
+        if (it == all.end())
+          continue;
+        const Mean m = it->second.result();
+        csv << '"' << method << "\"," << mode << ',' << c << ',' << m.models << ','
+            << fixed(m.segments, 2) << ',' << fixed(m.seconds, 4);
+        for (int k = 0; k < 6; ++k)
+          csv << ',' << fixed(metric(m.scores, k), 6);
+        csv << '\n';
+      }
+  return csv.str();
+}
+
+std::string tablesMarkdown(const Report& report) {
+  const Means all = means(report);
+  std::ostringstream md;
+  md << "<!-- written by pcl_ncut_seg_eval -->\n";
+  for (const auto& mode : report.modes) {
+    overallTable(report, all, mode, md);
+    for (int k = 0; k < 6; ++k)
+      categoryTable(report, all, mode, k, md);
+  }
+  return md.str();
+}
+
+std::string summary(const Report& report) {
+  const Means all = means(report);
+  std::ostringstream out;
+  for (const auto& mode : report.modes)
+    for (const auto& method : methods(report)) {
+      const auto it = all.find({mode, method, "Overall"});
+      if (it == all.end())
+        continue;
+      const Mean m = it->second.result();
+      out << mode << " " << method << ": 1-RI " << fixed(m.scores.rand_index_error) << " Hamming "
+          << fixed(m.scores.hamming) << " GCE " << fixed(m.scores.gce) << " LCE "
+          << fixed(m.scores.lce) << " segments " << fixed(m.segments, 1) << " s/model "
+          << fixed(m.seconds, 2) << "\n";
+    }
+  return out.str();
+}
+
+std::string modelResults(const Report& report, int id) {
+  std::ostringstream out;
+  for (const Row& r : report.rows)
+    if (r.id == id)
+      out << " " << r.method << "/" << r.mode << " " << fixed(r.scores.rand_index_error) << "/"
+          << fixed(r.scores.hamming) << " (" << r.segments << " seg, " << fixed(r.seconds, 2)
+          << " s);";
+  return out.str();
+}
+
+} // namespace eval
+} // namespace pcl_ncut_seg
