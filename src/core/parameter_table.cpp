@@ -74,9 +74,11 @@ bool fail(std::string* why, const ParameterInfo& row, const std::string& got) {
   return false;
 }
 
-/** \brief The text as a number (the whole text, finite), or nullopt. */
-std::optional<double> parseNumber(const std::string& text) {
-  if (text.empty())
+/** \brief The text as a number, or nullopt: decimal only (no hexadecimal, no spaces, no
+ * "inf" or "nan"), an integer as optional sign and digits. */
+std::optional<double> parseNumber(const std::string& text, bool integer) {
+  const char* allowed = integer ? "+-0123456789" : "+-0123456789.eE";
+  if (text.empty() || text.find_first_not_of(allowed) != std::string::npos)
     return std::nullopt;
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end); // (an underflow reads as a denormal)
@@ -121,8 +123,11 @@ ParameterInfo number(ParameterInfo r, Range range, Access access, const char* of
   r.hi_open = range.hi_open;
   r.off_word = off_word;
   r.range = range.words(kInteger) + (kOptional ? std::string(" or ") + off_word : "");
+  // In range, whole for an integer, and representable by the field's type (no undefined cast).
   const auto valid = [range](double v) {
-    return range.contains(v) && (!kInteger || v == std::floor(v));
+    return range.contains(v) && (!kInteger || v == std::floor(v)) &&
+           v >= static_cast<double>(std::numeric_limits<T>::lowest()) &&
+           v <= static_cast<double>(std::numeric_limits<T>::max());
   };
   r.get = [access, off = r.off_word](const Parameters& p) -> std::string {
     const Field& f = access(const_cast<Parameters&>(p));
@@ -137,7 +142,7 @@ ParameterInfo number(ParameterInfo r, Range range, Access access, const char* of
         access(p) = std::nullopt;
         return true;
       }
-    const std::optional<double> v = parseNumber(text);
+    const std::optional<double> v = parseNumber(text, kInteger);
     if (!v || !valid(*v) || !valid(static_cast<double>(static_cast<T>(*v))))
       return fail(why, r, "'" + text + "'");
     access(p) = static_cast<T>(*v);
