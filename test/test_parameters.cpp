@@ -123,11 +123,14 @@ TEST(ParameterTable, EveryNumberPastItsRangeIsRejectedWithItsRange) {
     Parameters p;
     EXPECT_FALSE(r.set(p, "", nullptr)) << r.name;
     EXPECT_FALSE(r.set(p, "1x", nullptr)) << r.name;
-    for (const char* bad : {" 1", "1 ", "0x10", "inf", "nan"})
+    for (const char* bad : {" 1", "1 ", "0x10", "inf", "nan"}) {
       EXPECT_FALSE(r.set(p, bad, nullptr)) << r.name << " took '" << bad << "'";
-    if (r.kind == ValueKind::Integer)
-      for (const char* bad : {"10.0", "1e3", "4294967296", "-2147483649", "1e300"})
+    }
+    if (r.kind == ValueKind::Integer) {
+      for (const char* bad : {"10.0", "1e3", "4294967296", "-2147483649", "1e300"}) {
         EXPECT_FALSE(r.set(p, bad, nullptr)) << r.name << " took '" << bad << "'";
+      }
+    }
     EXPECT_EQ(r.set(p, "off", nullptr), r.off_word == "off") << r.name;
   }
 }
