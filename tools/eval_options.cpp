@@ -1,0 +1,181 @@
+#include "eval_options.h"
+
+#include "cli/algorithm_flags.h"
+
+#include <pcl/console/print.h>
+
+#include <sstream>
+#include <utility>
+
+namespace pcl_ncut_seg {
+namespace eval {
+
+using namespace pcl_ncut_seg::tool;
+
+const std::vector<std::string> kAllMethods = {"ours", "lccp", "cpc", "one", "octants", "human"};
+const std::vector<std::string> kAllModes = {"auto", "given"};
+
+namespace {
+
+std::string numberText(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// ------------------------------------------------------------------------------ command line
+
+/** "1-3,181" as the ids 1, 2, 3, 181; false with the reason. */
+bool parseIds(const std::string& text, std::vector<int>& ids, std::string* why) {
+  for (const std::string& item : splitList(text)) {
+    const std::size_t dash = item.find('-', 1);
+    long lo = 0, hi = 0;
+    if (!toInt(item.substr(0, dash), lo) ||
+        !toInt(dash == std::string::npos ? item : item.substr(dash + 1), hi)) {
+      *why = "expected ids and ranges such as 1-3,181";
+      return false;
+    }
+    if (lo < 1 || hi < lo) {
+      *why = "bad id range '" + item + "': expected ids >= 1, low-high";
+      return false;
+    }
+    for (long id = lo; id <= hi; ++id)
+      ids.push_back(static_cast<int>(id));
+  }
+  if (ids.empty())
+    *why = "no ids";
+  return !ids.empty();
+}
+
+/** Every item of a list is one of the words; false with the reason. */
+bool parseWords(const std::string& text, const std::vector<std::string>& words,
+                std::vector<std::string>& items, std::string* why) {
+  items = splitList(text);
+  for (const std::string& item : items)
+    if (std::find(words.begin(), words.end(), item) == words.end()) {
+      *why = "unknown '" + item + "'";
+      break;
+    }
+  if (items.empty())
+    *why = "an empty list";
+  return why->empty();
+}
+
+/** A list of numbers in [lo, hi]; false with the reason. */
+bool parseNumbers(const std::string& text, double lo, double hi, std::vector<double>& values,
+                  std::string* why) {
+  for (const std::string& item : splitList(text)) {
+    double v = 0;
+    if (!toDouble(item, v) || v < lo || v > hi) {
+      *why = "'" + item + "' is not a number " +
+             (hi > 1e300 ? ">= " + numberText(lo)
+                         : "in [" + numberText(lo) + ", " + numberText(hi) + "]");
+      return false;
+    }
+    values.push_back(v);
+  }
+  if (values.empty())
+    *why = "an empty list";
+  return !values.empty();
+}
+
+/** The evaluator's own flags: what to run, on which models, and the sweeps of 'ours'. */
+std::vector<Flag> runFlags() {
+  std::vector<Flag> rows = {
+      textFlag("-methods", "LIST", "of ours,lccp,cpc,one,octants,human", "all"),
+      textFlag("-modes", "LIST",
+               "of auto,given: the segmenter chooses the number of segments, or gets "
+               "nSeg-ByModel.txt's",
+               "auto,given"),
+      textFlag("-ids", "LIST", "model ids and ranges, e.g. 1-3,181", "every off/<id>.off"),
+      textFlag("-thresholds", "LIST",
+               "NCut thresholds for 'ours' in auto mode, each its own row (a sweep of "
+               "-threshold that reuses each model's expensive stage)",
+               "-threshold"),
+      textFlag("-fractions", "LIST",
+               "minimum segment fractions for 'ours' in auto mode, each in [0, 0.5] (0: off) "
+               "and its own row with every threshold (a sweep of -min_segment_fraction)",
+               "-min_segment_fraction"),
+  };
+  rows[0].check = [](const std::string& t, std::string* why) {
+    std::vector<std::string> items;
+    return parseWords(t, kAllMethods, items, why);
+  };
+  rows[1].check = [](const std::string& t, std::string* why) {
+    std::vector<std::string> items;
+    return parseWords(t, kAllModes, items, why);
+  };
+  rows[2].check = [](const std::string& t, std::string* why) {
+    std::vector<int> ids;
+    return parseIds(t, ids, why);
+  };
+  rows[3].check = [](const std::string& t, std::string* why) {
+    std::vector<double> v;
+    return parseNumbers(t, 0, 1e308, v, why);
+  };
+  rows[4].check = [](const std::string& t, std::string* why) {
+    std::vector<double> v;
+    return parseNumbers(t, 0, 0.5, v, why);
+  };
+  return rows;
+}
+
+/** The algorithm's defaults in the evaluator: those of the library, on one thread. */
+pcl_ncut_seg::Parameters evalDefaults() {
+  pcl_ncut_seg::Parameters p;
+  p.execution.num_threads = 1;
+  return p;
+}
+
+} // namespace
+
+std::vector<Flag> evalFlags() {
+  std::vector<Flag> table;
+  append(table, runFlags(), "evaluation");
+  append(table, algorithmFlags(evalDefaults()));
+  append(table, commonFlags());
+  return table;
+}
+
+void printHelp() {
+  pcl::console::print_info(
+      "Syntax: pcl_ncut_seg_eval <psb_dir> <out_dir> [options]\n"
+      "Scores segmenters on the Princeton Segmentation Benchmark (points at face centroids)\n"
+      "and writes out_dir/models.csv, categories.csv and tables.md. The algorithm's options\n"
+      "are pcl_ncut_seg's, for 'ours'.\n  where options are:\n");
+  printFlags(evalFlags());
+}
+
+Options readOptions(const Flags& flags) {
+  if (flags.files.size() != 2)
+    throw Failure("expected <psb_dir> <out_dir> (see -h)");
+  for (const auto& [list, single] :
+       {std::pair<const char*, const char*>{"-thresholds", "-threshold"},
+        {"-fractions", "-min_segment_fraction"}})
+    if (flags.has(list) && flags.has(single))
+      throw Failure(std::string("give either ") + single + " or " + list + ", not both");
+  Options o;
+  if (!parametersFromFlags(flags, evalDefaults(), o.params))
+    throw Failure(""); // said why
+  if (o.params.stopping.rule == pcl_ncut_seg::StoppingRule::Count &&
+      (flags.has("-thresholds") || flags.has("-fractions")))
+    throw Failure("the count rule (-segments) takes no -thresholds or -fractions");
+  o.psb_dir = flags.files[0];
+  o.out_dir = flags.files[1];
+  std::string why;
+  if (flags.has("-methods"))
+    parseWords(flags.text("-methods"), kAllMethods, o.methods, &why);
+  if (flags.has("-modes"))
+    parseWords(flags.text("-modes"), kAllModes, o.modes, &why);
+  if (flags.has("-ids"))
+    parseIds(flags.text("-ids"), o.ids, &why);
+  if (flags.has("-thresholds"))
+    parseNumbers(flags.text("-thresholds"), 0, 1e308, o.thresholds, &why);
+  if (flags.has("-fractions"))
+    parseNumbers(flags.text("-fractions"), 0, 0.5, o.fractions, &why);
+  o.quiet = flags.has("-quiet");
+  return o;
+}
+
+} // namespace eval
+} // namespace pcl_ncut_seg

@@ -1,0 +1,57 @@
+/*
+ * pcl_ncut_seg_eval's command line: its flags (what to run, on which models, the sweeps of
+ * 'ours', and the algorithm's own), the help, and the options read from them; and Failure,
+ * the reason to stop that every step throws.
+ */
+#pragma once
+
+#include "cli/flags.h"
+
+#include <pcl_ncut_seg/parameters.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pcl_ncut_seg {
+namespace eval {
+
+/** A reason to stop, thrown by a step and printed as one line by main(). */
+struct Failure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/** The methods and the modes of -methods and -modes. */
+extern const std::vector<std::string> kAllMethods;
+extern const std::vector<std::string> kAllModes;
+
+/** Every flag of the evaluator. */
+std::vector<tool::Flag> evalFlags();
+
+/** The help: the syntax, what the evaluator writes, and every flag. */
+void printHelp();
+
+/** What to run, and the parameters of 'ours'. */
+struct Options {
+  std::string psb_dir, out_dir;
+  std::vector<std::string> methods = kAllMethods, modes = kAllModes;
+  std::vector<int> ids;           ///< empty: every off/<id>.off
+  std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
+  std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
+  bool quiet = false;
+  pcl_ncut_seg::Parameters params; ///< -paper or the defaults, and the algorithm flags
+
+  bool has(const std::string& method) const {
+    return std::find(methods.begin(), methods.end(), method) != methods.end();
+  }
+  bool hasMode(const std::string& mode) const {
+    return std::find(modes.begin(), modes.end(), mode) != modes.end();
+  }
+};
+
+/** The options from the flags (whose values the table has checked). */
+Options readOptions(const tool::Flags& flags);
+
+} // namespace eval
+} // namespace pcl_ncut_seg
