@@ -9,6 +9,7 @@
 #include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace pcl_ncut_seg {
 
@@ -26,13 +27,18 @@ bool serves(const Analysis& analysis, const Parameters& params) {
 }
 
 namespace {
+/// Crease splits or cuts asked for.
+bool splitsCreases(const Parameters& params) {
+  return params.refinement.crease_split || params.refinement.crease_cut;
+}
+
 /// The extensions that measure the surface's bends around the refined supernodes.
 Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress) {
   Analysis a = featureStages(std::move(graph), params, tie_rank, times, progress);
   const CutNeeds needs = cutNeeds(params);
-  const bool creases = params.refinement.crease_split || params.refinement.crease_cut;
+  const bool creases = splitsCreases(params);
   if (!creases && !needs.concavity && !needs.crease)
     return a;
   // Measured between the supernodes, like eq. (8): their time counts as refinement time.
@@ -54,8 +60,8 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                               params.execution.num_threads);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
-  const bool keep_xyz = params.cad.enabled || needs.concavity || needs.crease ||
-                        params.refinement.crease_split || params.refinement.crease_cut;
+  const bool keep_xyz =
+      params.cad.enabled || needs.concavity || needs.crease || splitsCreases(params);
   if (!keep_xyz)
     std::vector<float>().swap(points.xyz);
   times.knn += clock.lap();
@@ -66,7 +72,8 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   if (params.cad.enabled) {
     // Sec. 7: approximate normals from the caller; their time counts as kNN time (Table 1).
     const std::vector<float> normals =
-        points.normals ? points.normals(graph) : std::vector<float>(3 * n, 0.0f / 0.0f);
+        points.normals ? points.normals(graph)
+                       : std::vector<float>(3 * n, std::numeric_limits<float>::quiet_NaN());
     times.knn += clock.lap();
     a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank, times, progress);
   } else {
