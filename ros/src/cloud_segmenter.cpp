@@ -16,7 +16,8 @@ namespace pcl_ncut_seg_ros {
 
 std::string SegmentStats::yaml() const {
   std::ostringstream out;
-  out << "{points: " << points << ", segmented: " << segmented << ", segments: " << segments
+  out << "{stamp: " << pcl_ncut_seg::formatNumber(stamp) << ", points: " << points
+      << ", segmented: " << segmented << ", segments: " << segments
       << ", analysed: " << (analysed ? "true" : "false") << ", analyses: " << analyses
       << ", cuts: " << cuts
       << ", analysis_seconds: " << pcl_ncut_seg::formatNumber(analysis_seconds)
@@ -129,6 +130,7 @@ bool CloudSegmenter::run(std::string* why) {
     return false;
   }
   const pcl_ncut_seg::PhaseTimes& t = seg_.getPhaseTimes();
+  stats_.stamp = header_.stamp.toSec();
   stats_.points = cloud_->size();
   stats_.segments = segments_.size();
   stats_.segmented = 0;

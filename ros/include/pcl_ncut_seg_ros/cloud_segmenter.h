@@ -20,6 +20,7 @@ namespace pcl_ncut_seg_ros {
 
 /** \brief What the last segmentation did. */
 struct SegmentStats {
+  double stamp = 0;            ///< the cloud's header stamp, in seconds
   std::size_t points = 0;      ///< points of the cloud (finite or not)
   std::size_t segmented = 0;   ///< points in a segment
   std::size_t segments = 0;    ///< segments found
