@@ -9,6 +9,13 @@ PACKAGES=(
   libgtest-dev
   pcl-tools xvfb xauth
   clang libclang-rt-dev libomp-dev   # scripts/fuzz.sh: libFuzzer, sanitizer runtimes, OpenMP
+  # ROS 1 (ros/: the nodelet, the node, their rostests; the README's ROS section)
+  catkin libroscpp-dev rosout python3-rosmaster python3-roslaunch python3-rostopic python3-rosnode
+  libnodeletlib-dev libnodeletlib-tools libnodelet-topic-tools-dev libmessage-filters-dev
+  libsensor-msgs-dev python3-sensor-msgs libstd-msgs-dev python3-std-msgs
+  libpcl-conversions-dev libpcl-ros-dev pcl-ros-tools python3-pcl-msgs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  rospack-tools rosbash python3-rostest librostest-dev
 )
 
 missing=()

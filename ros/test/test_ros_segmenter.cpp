@@ -335,3 +335,27 @@ TEST(RosSegmenter, RecutKeepsTheAnalysis) {
   EXPECT_TRUE(seg.stats().analysed);
   EXPECT_EQ(seg.stats().analyses, 2u);
 }
+
+// Switching on an extension whose measurement the kept analysis lacks runs the analysis again.
+TEST(RosSegmenter, SwitchingOnBoundaryRefinementAnalysesAgain) {
+  const auto shape = pcl_ncut_seg::test::makeDumbbell(1500, 3);
+  CloudSegmenter seg;
+  std::string why;
+  Parameters p = segments(3);
+  p.boundary.band.reset();
+  ASSERT_TRUE(seg.setParameters(p, &why)) << why;
+  ASSERT_TRUE(seg.segment(toMsg(*shape.cloud), nullptr, &why)) << why;
+  Config c = toConfig(p);
+  c.boundary_band = 0.2;
+  EXPECT_TRUE(applyConfig(c, p).empty());
+  ASSERT_TRUE(seg.setParameters(p, &why)) << why;
+  ASSERT_TRUE(seg.recut(&why)) << why;
+  EXPECT_TRUE(seg.stats().analysed);
+  // Back off: the new analysis serves it, no analysis.
+  c.boundary_band = 0.0;
+  EXPECT_TRUE(applyConfig(c, p).empty());
+  ASSERT_TRUE(seg.setParameters(p, &why)) << why;
+  ASSERT_TRUE(seg.recut(&why)) << why;
+  EXPECT_FALSE(seg.stats().analysed);
+  EXPECT_EQ(seg.stats().analyses, 2u);
+}
