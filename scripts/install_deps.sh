@@ -10,6 +10,13 @@ PACKAGES=(
   python3-dev python3-pybind11 python3-numpy python3-pytest   # the Python module and its tests
   pcl-tools xvfb xauth
   clang libclang-rt-dev libomp-dev   # scripts/fuzz.sh: libFuzzer, sanitizer runtimes, OpenMP
+  # ROS 1 (ros/: the nodelet, the node, their rostests; the README's ROS section)
+  catkin libroscpp-dev rosout python3-rosmaster python3-roslaunch python3-rostopic python3-rosnode
+  libnodeletlib-dev libnodeletlib-tools libnodelet-topic-tools-dev libmessage-filters-dev
+  libsensor-msgs-dev python3-sensor-msgs libstd-msgs-dev python3-std-msgs
+  libpcl-conversions-dev libpcl-ros-dev pcl-ros-tools python3-pcl-msgs
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  rospack-tools rosbash python3-rostest librostest-dev
 )
 
 missing=()

@@ -1,0 +1,84 @@
+/*
+ * pcl_ncut_seg ROS: pcl::SupernodeNCutSegmentation behind sensor_msgs/PointCloud2. It checks
+ * a cloud, segments it, and keeps it with its expensive stage, so that new cut parameters
+ * re-cut it without the analysis (the two stages of the segmentation). No ROS node here: the
+ * nodelet and the tests drive it.
+ */
+#pragma once
+
+#include <pcl_ncut_seg/parameters.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include <pcl_msgs/PointIndices.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcl_ncut_seg_ros {
+
+/** \brief What the last segmentation did. */
+struct SegmentStats {
+  double stamp = 0;            ///< the cloud's header stamp, in seconds
+  std::size_t points = 0;      ///< points of the cloud (finite or not)
+  std::size_t segmented = 0;   ///< points in a segment
+  std::size_t segments = 0;    ///< segments found
+  bool analysed = false;       ///< the expensive stage ran (false: a kept one was re-cut)
+  std::size_t analyses = 0;    ///< expensive stages run so far
+  std::size_t cuts = 0;        ///< cuts run so far (every segmentation is one)
+  double analysis_seconds = 0; ///< of the last analysis (also when it was kept)
+  double cut_seconds = 0;      ///< of the last cut
+
+  /** \brief A one-line YAML mapping of the above, as the nodelet publishes on ~stats. */
+  std::string yaml() const;
+};
+
+class CloudSegmenter {
+public:
+  CloudSegmenter();
+
+  /** \brief Take valid parameters (false with why, nothing changed, for invalid ones). A
+   * change of the cut stages only keeps the analysis of the kept cloud; see recut(). */
+  bool setParameters(const pcl_ncut_seg::Parameters& params, std::string* why);
+  const pcl_ncut_seg::Parameters& parameters() const { return seg_.getParameters(); }
+
+  /** \brief Check the cloud (x, y, z as FLOAT32; a layout that matches its data; at least one
+   * finite point; indices within it), then segment it, restricted to indices if given. A bad
+   * cloud returns false with why and leaves the kept cloud as it was. */
+  bool segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
+               std::string* why);
+
+  /** \brief Segment the kept cloud again with the parameters now set: the analysis is kept
+   * when only cut parameters changed. False with why when no cloud is kept. */
+  bool recut(std::string* why);
+
+  bool hasCloud() const { return static_cast<bool>(cloud_); }
+
+  /** \brief The kept cloud labelled: the input's header, width, height and order; fields x, y,
+   * z, rgb, label; label 1 .. segments, 0 (black) for points in no segment. */
+  void labelledCloud(sensor_msgs::PointCloud2& out) const;
+
+  /** \brief The segments as indices into the input cloud, in segment order, each with the
+   * input's header. */
+  std::vector<pcl_msgs::PointIndices> segmentIndices() const;
+
+  const SegmentStats& stats() const { return stats_; }
+  const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& segmentation() const { return seg_; }
+
+private:
+  bool run(std::string* why);
+
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg_;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_; ///< the kept cloud (null before a good one)
+  std_msgs::Header header_;                   ///< its header
+  std::vector<pcl::PointIndices> segments_;
+  SegmentStats stats_;
+  std::size_t analyses_started_ = 0;
+};
+
+/** \brief Why the cloud cannot be segmented (missing x, y or z, a layout that does not match
+ * the data, no points), or "" if it can. */
+std::string checkCloud(const sensor_msgs::PointCloud2& cloud);
+
+} // namespace pcl_ncut_seg_ros
