@@ -120,6 +120,47 @@ std::vector<Flag> runFlags() {
   return rows;
 }
 
+/** The view mode: how many views of each model, and the camera. */
+std::vector<Flag> viewFlags() {
+  const pcl_ncut_seg::CameraSettings cam;
+  return {
+      intFlag("-views", "V",
+              "score V seeded depth-camera views of each model instead of the whole object, each "
+              "on the faces it sees (ours also on the whole object, on the same faces)",
+              "off", 1, 1000),
+      intFlag("-width", "W", "view width in pixels (with -views)", std::to_string(cam.width), 8,
+              10000),
+      intFlag("-height", "H", "view height in pixels (with -views)", std::to_string(cam.height), 8,
+              10000),
+      realFlag("-noise", "SIGMA",
+               "views' range noise in metres at 1 m; it grows with the depth squared (0: none)",
+               numberText(cam.noise_at_1m), 0, 0.1),
+  };
+}
+
+/** The view settings; a failure for the flags that the view mode does not take. */
+void readViewOptions(const Flags& flags, Options& o) {
+  const bool views = flags.has("-views");
+  for (const char* name : {"-width", "-height", "-noise"})
+    if (flags.has(name) && !views)
+      throw Failure(std::string(name) + " needs -views");
+  if (!views)
+    return;
+  for (const char* name : {"-modes", "-thresholds", "-fractions"})
+    if (flags.has(name))
+      throw Failure(std::string("-views scores the automatic mode with the parameters given; "
+                                "it takes no ") +
+                    name);
+  o.views = static_cast<int>(flags.integer("-views"));
+  if (flags.has("-width"))
+    o.camera.width = static_cast<int>(flags.integer("-width"));
+  if (flags.has("-height"))
+    o.camera.height = static_cast<int>(flags.integer("-height"));
+  if (flags.has("-noise"))
+    o.camera.noise_at_1m = flags.real("-noise");
+  o.modes = {"view"};
+}
+
 /** The algorithm's defaults in the evaluator: those of the library, on one thread. */
 pcl_ncut_seg::Parameters evalDefaults() {
   pcl_ncut_seg::Parameters p;
@@ -132,6 +173,7 @@ pcl_ncut_seg::Parameters evalDefaults() {
 std::vector<Flag> evalFlags() {
   std::vector<Flag> table;
   append(table, runFlags(), "evaluation");
+  append(table, viewFlags(), "views (57 degrees across, the model scaled to 0.3 m, 1 m away)");
   append(table, algorithmFlags(evalDefaults()));
   append(table, commonFlags());
   return table;
@@ -174,6 +216,7 @@ Options readOptions(const Flags& flags) {
   if (flags.has("-fractions"))
     parseNumbers(flags.text("-fractions"), 0, 0.5, o.fractions, &why);
   o.quiet = flags.has("-quiet");
+  readViewOptions(flags, o);
   return o;
 }
 

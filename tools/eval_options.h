@@ -6,6 +6,7 @@
 #pragma once
 
 #include "cli/flags.h"
+#include "depth_view.h"
 
 #include <pcl_ncut_seg/parameters.h>
 
@@ -40,7 +41,9 @@ struct Options {
   std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
   std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
   bool quiet = false;
-  pcl_ncut_seg::Parameters params; ///< -paper or the defaults, and the algorithm flags
+  int views = 0;                       ///< depth-camera views per model; 0: the whole objects
+  pcl_ncut_seg::CameraSettings camera; ///< the views' camera (-width, -height, -noise)
+  pcl_ncut_seg::Parameters params;     ///< -paper or the defaults, and the algorithm flags
 
   bool has(const std::string& method) const {
     return std::find(methods.begin(), methods.end(), method) != methods.end();

@@ -78,12 +78,22 @@ std::vector<std::string> categoriesAndOverall(const Report& report) {
   return out;
 }
 
+/** A mode's heading, long (the overall table) or short (a metric's table). */
+std::string modeTitle(const std::string& mode, bool long_form) {
+  if (mode == "auto")
+    return long_form ? "Automatic mode" : "Automatic";
+  if (mode == "view")
+    return long_form ? "Depth-camera views, on the faces each view sees" : "Views";
+  return long_form ? "Given number of segments" : "Given count";
+}
+
 /** One mode's overall table. */
 void overallTable(const Report& report, const Means& all, const std::string& mode,
                   std::ostringstream& md) {
-  md << "\n### " << (mode == "auto" ? "Automatic mode" : "Given number of segments")
-     << ": overall (" << report.ids.size() << " models)\n\n";
-  md << "| method | 1 - RI | Hamming | Rm | Rf | GCE | LCE | segments | s / model |\n";
+  const bool view = mode == "view";
+  md << "\n### " << modeTitle(mode, true) << ": overall (" << report.ids.size() << " models)\n\n";
+  md << "| method | 1 - RI | Hamming | Rm | Rf | GCE | LCE | segments"
+     << (view ? " / view | s / view" : " | s / model") << " |\n";
   md << "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& method : methods(report)) {
     const auto it = all.find({mode, method, "Overall"});
@@ -101,7 +111,7 @@ void overallTable(const Report& report, const Means& all, const std::string& mod
 void categoryTable(const Report& report, const Means& all, const std::string& mode, int k,
                    std::ostringstream& md) {
   const std::vector<std::string> method_list = methods(report);
-  md << "\n#### " << (mode == "auto" ? "Automatic" : "Given count") << ": " << kMetricNames[k]
+  md << "\n#### " << modeTitle(mode, false) << ": " << kMetricNames[k]
      << " per category\n\n| category |";
   for (const auto& method : method_list)
     md << ' ' << method << " |";

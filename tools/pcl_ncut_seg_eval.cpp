@@ -13,8 +13,10 @@
 #include "cli/console.h"
 #include "cli/flags.h"
 #include "cli/output.h"
+#include "eval_model.h"
 #include "eval_options.h"
 #include "eval_report.h"
+#include "eval_views.h"
 #include "mesh_sampling.h"
 #include "psb_metrics.h"
 #include "psb_peers.h"
@@ -42,9 +44,14 @@ using pcl_ncut_seg::eval::readOptions;
 
 namespace {
 
+using pcl_ncut_seg::eval::againstHumans;
+using pcl_ncut_seg::eval::countSegments;
 using pcl_ncut_seg::eval::fixed;
+using pcl_ncut_seg::eval::Model;
 using pcl_ncut_seg::eval::Report;
 using pcl_ncut_seg::eval::Row;
+using pcl_ncut_seg::eval::secondsSince;
+using pcl_ncut_seg::eval::segmentsToLabels;
 
 /** The segmenter set to these parameters (valid: the flag table checked them). */
 void configure(Segmenter& seg, const pcl_ncut_seg::Parameters& params) {
@@ -89,28 +96,16 @@ Benchmark openBenchmark(const Options& opt) {
   return b;
 }
 
-/** One model: its points at the face centroids, the face areas and the human labels. */
-struct Model {
-  int id = 0;
-  std::string name, category;
-  std::vector<float> xyz;
-  std::vector<double> area;
-  std::size_t n = 0;
-  std::vector<std::vector<int>> humans;
-  int given = 0; ///< the benchmark's count, 0 for none
-};
-
 Model loadModel(const Benchmark& b, int id, bool need_count) {
   Model m;
   m.id = id;
   m.name = std::to_string(id);
   m.category = pcl_ncut_seg::psbCategory(id);
-  pcl_ncut_seg::TriangleMesh mesh;
   std::string error;
-  if (!pcl_ncut_seg::readOff((b.dir / "off" / (m.name + ".off")).string(), mesh, &error))
+  if (!pcl_ncut_seg::readOff((b.dir / "off" / (m.name + ".off")).string(), m.mesh, &error))
     throw Failure(error);
-  m.xyz = pcl_ncut_seg::faceCentroids(mesh);
-  m.area = pcl_ncut_seg::faceAreas(mesh);
+  m.xyz = pcl_ncut_seg::faceCentroids(m.mesh);
+  m.area = pcl_ncut_seg::faceAreas(m.mesh);
   m.n = m.xyz.size() / 3;
   std::vector<fs::path> files;
   if (fs::is_directory(b.dir / "seg" / m.name))
@@ -132,35 +127,6 @@ Model loadModel(const Benchmark& b, int id, bool need_count) {
 }
 
 // ---------------------------------------------------------------------------------- scoring
-
-/** Mean of the scores against every human segmentation. */
-SegmentationScores againstHumans(const std::vector<int>& labels,
-                                 const std::vector<std::vector<int>>& humans,
-                                 const std::vector<double>& area) {
-  SegmentationScores sum;
-  for (const auto& h : humans)
-    sum += pcl_ncut_seg::compareSegmentations(labels, h, area);
-  return sum / static_cast<double>(humans.size());
-}
-
-std::size_t countSegments(const std::vector<int>& labels) {
-  std::set<int> s;
-  for (int l : labels)
-    s.insert(l < 0 ? -1 : l);
-  return s.size();
-}
-
-double secondsSince(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
-std::vector<int> segmentsToLabels(const std::vector<pcl::PointIndices>& segments, std::size_t n) {
-  std::vector<int> labels(n, -1);
-  for (std::size_t s = 0; s < segments.size(); ++s)
-    for (const auto i : segments[s].indices)
-      labels[static_cast<std::size_t>(i)] = static_cast<int>(s);
-  return labels;
-}
 
 /** A row of the model, without its mode. */
 Row rowOf(const Model& m) {
@@ -300,18 +266,7 @@ void scoreBaselines(const Model& m, const Options& opt, Report& report) {
     return;
   Row r = rowOf(m); // the benchmark's human baseline
   r.method = "human";
-  SegmentationScores sum;
-  double segs = 0;
-  for (std::size_t i = 0; i < m.humans.size(); ++i) {
-    std::vector<std::vector<int>> others;
-    for (std::size_t j = 0; j < m.humans.size(); ++j)
-      if (j != i)
-        others.push_back(m.humans[j]);
-    sum += againstHumans(m.humans[i], others, m.area);
-    segs += static_cast<double>(countSegments(m.humans[i]));
-  }
-  r.scores = sum / static_cast<double>(m.humans.size());
-  r.segments = segs / static_cast<double>(m.humans.size());
+  r.scores = pcl_ncut_seg::eval::humansAgainstEachOther(m.humans, m.area, &r.segments);
   addBothModes(opt, r, report);
 }
 
@@ -342,10 +297,14 @@ void evaluate(const Options& opt) {
   report.ids = bench.ids;
   for (const int id : bench.ids) {
     const Model m = loadModel(bench, id, opt.hasMode("given") && opt.has("ours"));
-    if (opt.has("ours"))
-      scoreOurs(m, opt, settings, report);
-    scorePeers(m, opt, report);
-    scoreBaselines(m, opt, report);
+    if (opt.views > 0) {
+      pcl_ncut_seg::eval::scoreViews(m, opt, report);
+    } else {
+      if (opt.has("ours"))
+        scoreOurs(m, opt, settings, report);
+      scorePeers(m, opt, report);
+      scoreBaselines(m, opt, report);
+    }
     if (!opt.quiet)
       std::cout << "model " << id << " (" << m.category << ", " << m.n << " faces, "
                 << m.humans.size()

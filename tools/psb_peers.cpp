@@ -49,19 +49,23 @@ bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParam
     return false;
   }
 
-  // Normals, oriented away from the centroid (towards it, then flipped).
+  // Normals, oriented towards the viewpoint, or away from the centroid (towards it, flipped).
   pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
   pcl::NormalEstimation<PointT, pcl::Normal> estimation;
   estimation.setInputCloud(cloud);
   estimation.setSearchMethod(pcl::search::KdTree<PointT>::Ptr(new pcl::search::KdTree<PointT>));
   estimation.setKSearch(params.normal_neighbours);
-  estimation.setViewPoint(static_cast<float>(centroid.x()), static_cast<float>(centroid.y()),
-                          static_cast<float>(centroid.z()));
+  const auto& vp = params.viewpoint;
+  estimation.setViewPoint(vp ? (*vp)[0] : static_cast<float>(centroid.x()),
+                          vp ? (*vp)[1] : static_cast<float>(centroid.y()),
+                          vp ? (*vp)[2] : static_cast<float>(centroid.z()));
   estimation.compute(*normals);
   for (auto& nrm : *normals) {
-    nrm.normal_x = -nrm.normal_x;
-    nrm.normal_y = -nrm.normal_y;
-    nrm.normal_z = -nrm.normal_z;
+    if (!vp) {
+      nrm.normal_x = -nrm.normal_x;
+      nrm.normal_y = -nrm.normal_y;
+      nrm.normal_z = -nrm.normal_z;
+    }
     if (!std::isfinite(nrm.normal_x) || !std::isfinite(nrm.normal_y) ||
         !std::isfinite(nrm.normal_z)) {
       nrm.normal_x = nrm.normal_y = 0.0f; // degenerate neighbourhood: any unit vector

@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,11 +26,14 @@ struct PeerParams {
   bool cpc_directed_cutting = true;
   bool cpc_clean_cutting = true;
   unsigned cpc_ransac_iterations = 1000;
+  /// Where the points were seen from (a sensor's origin): normals are oriented towards it, as
+  /// PCL orients a view's normals. None: away from the points' centroid (closed surfaces).
+  std::optional<std::array<float, 3>> viewpoint;
 };
 
 /** \brief PCL's LCCP (cpc = false) or CPC (cpc = true) segmentation on supervoxels. Normals come
- * from PCL's normal estimation over the points' k nearest neighbours and are oriented away from
- * the points' centroid (the surfaces are closed; PCL would orient them towards the origin).
+ * from PCL's normal estimation over the points' k nearest neighbours and are oriented towards
+ * params.viewpoint if given, else away from the points' centroid (a closed surface).
  * Points that no supervoxel takes get -1. \return false with a reason on failure. */
 bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParams& params,
                         std::vector<int>& labels, std::string* error = nullptr);
