@@ -109,17 +109,56 @@ TEST_F(EvalTool, RunsEveryMethodOnAModel) {
       EXPECT_EQ(rows.count("\"" + std::string(method) + "\"," + mode), 1u) << method << mode;
 }
 
+TEST_F(EvalTool, ScoresDepthViewsOnTheFacesTheySee) {
+  const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
+                           " -views 3 -resolution 96x72 -quiet";
+  ASSERT_EQ(run(args), 0) << stderrText();
+  const auto rows = models();
+  ASSERT_EQ(rows.size(), 7u);
+  for (const char* method : {"ours", "ours whole", "lccp", "cpc", "one", "octants", "human"}) {
+    const auto& r = rows.at("\"" + std::string(method) + "\",view");
+    // A camera sees one to three of the cube's six faces.
+    EXPECT_GE(std::stod(r[4]), 1) << method;
+    EXPECT_LE(std::stod(r[4]), 3) << method;
+    for (int c = 7; c <= 12; ++c) {
+      EXPECT_GE(std::stod(r[c]), 0) << method;
+      EXPECT_LE(std::stod(r[c]), 1) << method;
+    }
+  }
+  // Of two people, one sees a single segment: 'one' agrees with that person, on any faces.
+  EXPECT_EQ(rows.at("\"one\",view")[5], "1");
+  std::ifstream md(dir_ / "out" / "tables.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  EXPECT_NE(text.str().find("Depth-camera views"), std::string::npos);
+  EXPECT_NE(text.str().find("s / view"), std::string::npos);
+}
+
 TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
   const std::string psb = (dir_ / "psb").string(), out = (dir_ / "out").string();
-  for (const std::string& args :
-       {psb, psb + " " + out + " -methods nothing", psb + " " + out + " -ids 0",
-        psb + " " + out + " -threshold", (dir_ / "none").string() + " " + out,
-        psb + " " + (dir_ / "none").string(), psb + " " + out + " -k 1",
-        psb + " " + out + " -fractions 0.1,0.7", psb + " " + out + " -thresholds 0.1,x",
-        psb + " " + out + " -threshold 0.1 -thresholds 0.1,0.2", psb + " " + out + " -modes ,",
-        psb + " " + out + " -creasecut 2", psb + " " + out + " -crease_cut 0.1 -creasecut 0.2",
-        psb + " " + out + " -gap 1", psb + " " + out + " -neck 0",
-        psb + " " + out + " -segments 3 -thresholds 0.1,0.2", psb + " " + out + " -bogus"}) {
+  for (const std::string& args : {psb,
+                                  psb + " " + out + " -methods nothing",
+                                  psb + " " + out + " -ids 0",
+                                  psb + " " + out + " -threshold",
+                                  (dir_ / "none").string() + " " + out,
+                                  psb + " " + (dir_ / "none").string(),
+                                  psb + " " + out + " -k 1",
+                                  psb + " " + out + " -fractions 0.1,0.7",
+                                  psb + " " + out + " -thresholds 0.1,x",
+                                  psb + " " + out + " -threshold 0.1 -thresholds 0.1,0.2",
+                                  psb + " " + out + " -modes ,",
+                                  psb + " " + out + " -creasecut 2",
+                                  psb + " " + out + " -crease_cut 0.1 -creasecut 0.2",
+                                  psb + " " + out + " -gap 1",
+                                  psb + " " + out + " -neck 0",
+                                  psb + " " + out + " -segments 3 -thresholds 0.1,0.2",
+                                  psb + " " + out + " -bogus",
+                                  psb + " " + out + " -views 0",
+                                  psb + " " + out + " -views 1 -modes auto",
+                                  psb + " " + out + " -views 1 -thresholds 0.1,0.2",
+                                  psb + " " + out + " -resolution 64x48",
+                                  psb + " " + out + " -views 1 -range_noise -1",
+                                  psb + " " + out + " -views 1 -resolution 4x4"}) {
     EXPECT_EQ(run(args), 1) << args;
     const std::string err = stderrText();
     EXPECT_FALSE(err.empty()) << args;

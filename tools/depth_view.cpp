@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -252,6 +253,21 @@ std::array<double, 4> CameraPose::quaternion() const {
 std::size_t DepthView::validPixels() const {
   return static_cast<std::size_t>(
       std::count_if(face.begin(), face.end(), [](std::int64_t f) { return f >= 0; }));
+}
+
+bool parseResolution(const std::string& text, int& width, int& height) {
+  const std::size_t x = text.find('x');
+  if (x == std::string::npos || x == 0 || x + 1 == text.size() ||
+      text.find_first_not_of("0123456789x") != std::string::npos ||
+      text.find('x', x + 1) != std::string::npos)
+    return false;
+  const long w = std::strtol(text.substr(0, x).c_str(), nullptr, 10);
+  const long h = std::strtol(text.substr(x + 1).c_str(), nullptr, 10);
+  if (x > 6 || text.size() - x - 1 > 6 || w < 8 || h < 8 || w > 10000 || h > 10000)
+    return false;
+  width = static_cast<int>(w);
+  height = static_cast<int>(h);
+  return true;
 }
 
 std::array<double, 9> randomRotation(std::uint64_t seed) {

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -88,6 +89,10 @@ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/** \brief An image size "WxH" (e.g. "640x480"), each side an integer in [8, 10000].
+ * \return false if the text is not one. */
+bool parseResolution(const std::string& text, int& width, int& height);
 
 /** \brief A uniformly random rotation (a random direction to look from and a random roll
  * about it) for this seed; the same on every platform. */

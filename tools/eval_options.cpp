@@ -123,25 +123,30 @@ std::vector<Flag> runFlags() {
 /** The view mode: how many views of each model, and the camera. */
 std::vector<Flag> viewFlags() {
   const pcl_ncut_seg::CameraSettings cam;
-  return {
+  std::vector<Flag> rows = {
       intFlag("-views", "V",
               "score V seeded depth-camera views of each model instead of the whole object, each "
               "on the faces it sees (ours also on the whole object, on the same faces)",
               "off", 1, 1000),
-      intFlag("-width", "W", "view width in pixels (with -views)", std::to_string(cam.width), 8,
-              10000),
-      intFlag("-height", "H", "view height in pixels (with -views)", std::to_string(cam.height), 8,
-              10000),
-      realFlag("-noise", "SIGMA",
-               "views' range noise in metres at 1 m; it grows with the depth squared (0: none)",
+      textFlag("-resolution", "WxH", "the views' image size in pixels, each side in [8, 10000]",
+               std::to_string(cam.width) + "x" + std::to_string(cam.height)),
+      realFlag("-range_noise", "SIGMA",
+               "the views' range noise in metres at 1 m; it grows with the depth squared (0: none)",
                numberText(cam.noise_at_1m), 0, 0.1),
   };
+  rows[1].check = [](const std::string& t, std::string* why) {
+    int w = 0, h = 0;
+    if (!pcl_ncut_seg::parseResolution(t, w, h))
+      *why = "expected WxH such as 640x480, each side in [8, 10000]";
+    return why->empty();
+  };
+  return rows;
 }
 
 /** The view settings; a failure for the flags that the view mode does not take. */
 void readViewOptions(const Flags& flags, Options& o) {
   const bool views = flags.has("-views");
-  for (const char* name : {"-width", "-height", "-noise"})
+  for (const char* name : {"-resolution", "-range_noise"})
     if (flags.has(name) && !views)
       throw Failure(std::string(name) + " needs -views");
   if (!views)
@@ -152,12 +157,10 @@ void readViewOptions(const Flags& flags, Options& o) {
                                 "it takes no ") +
                     name);
   o.views = static_cast<int>(flags.integer("-views"));
-  if (flags.has("-width"))
-    o.camera.width = static_cast<int>(flags.integer("-width"));
-  if (flags.has("-height"))
-    o.camera.height = static_cast<int>(flags.integer("-height"));
-  if (flags.has("-noise"))
-    o.camera.noise_at_1m = flags.real("-noise");
+  if (flags.has("-resolution"))
+    pcl_ncut_seg::parseResolution(flags.text("-resolution"), o.camera.width, o.camera.height);
+  if (flags.has("-range_noise"))
+    o.camera.noise_at_1m = flags.real("-range_noise");
   o.modes = {"view"};
 }
 

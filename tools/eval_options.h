@@ -42,7 +42,7 @@ struct Options {
   std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
   bool quiet = false;
   int views = 0;                       ///< depth-camera views per model; 0: the whole objects
-  pcl_ncut_seg::CameraSettings camera; ///< the views' camera (-width, -height, -noise)
+  pcl_ncut_seg::CameraSettings camera; ///< the views' camera (-resolution, -range_noise)
   pcl_ncut_seg::Parameters params;     ///< -paper or the defaults, and the algorithm flags
 
   bool has(const std::string& method) const {

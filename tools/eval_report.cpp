@@ -188,8 +188,8 @@ std::string summary(const Report& report) {
       const Mean m = it->second.result();
       out << mode << " " << method << ": 1-RI " << fixed(m.scores.rand_index_error) << " Hamming "
           << fixed(m.scores.hamming) << " GCE " << fixed(m.scores.gce) << " LCE "
-          << fixed(m.scores.lce) << " segments " << fixed(m.segments, 1) << " s/model "
-          << fixed(m.seconds, 2) << "\n";
+          << fixed(m.scores.lce) << " segments " << fixed(m.segments, 1)
+          << (mode == "view" ? " s/view " : " s/model ") << fixed(m.seconds, 2) << "\n";
     }
   return out.str();
 }
