@@ -1,0 +1,183 @@
+/*
+ * pcl_ncut_seg_bench_views: how long a depth camera's frame takes, beside PCL's supervoxels +
+ * LCCP on the same cloud, in one run.
+ *
+ * Two organized 640 x 480 clouds rendered by tools/depth_view.h (noise 1.5 mm at 1 m):
+ *  (a) a tabletop object alone: the bunny scaled to a 0.3 m diagonal, seen from a seeded
+ *      direction at the distance that gives it about 20,000 valid pixels;
+ *  (b) a full frame: the same bunny standing on a table that fills the whole image, seen from
+ *      1 m, 60 degrees down: every pixel valid.
+ * Ours runs with the defaults on the organized cloud (NaNs included), on one thread and on all
+ * cores; LCCP as the evaluator runs it (tools/psb_peers.h: normals towards the sensor,
+ * supervoxels, LCCP) with the resolutions of PCL's LCCP tutorial (voxels of 7.5 mm, seeds of
+ * 3 cm), on the valid points. Prints the wall time of each; skips when the data is absent.
+ */
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "depth_view_pcl.h"
+#include "psb_peers.h"
+#include "timing.h"
+
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace {
+using pcl_ncut_seg_bench::cpuNow;
+using pcl_ncut_seg_bench::now;
+
+/** The view's valid points, x, y, z each. */
+std::vector<float> validPoints(const pcl_ncut_seg::DepthView& view) {
+  std::vector<float> xyz;
+  for (std::size_t i = 0; i < view.face.size(); ++i)
+    if (view.face[i] >= 0)
+      xyz.insert(xyz.end(), view.xyz.begin() + 3 * i, view.xyz.begin() + 3 * i + 3);
+  return xyz;
+}
+
+/** (a): the object alone, at the distance that gives it about `pixels` valid pixels. */
+pcl_ncut_seg::DepthView objectView(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t pixels) {
+  pcl_ncut_seg::CameraSettings cam;
+  const std::uint64_t seed = pcl_ncut_seg::viewSeed(1, 0);
+  const auto first = pcl_ncut_seg::renderView(mesh, cam, seed);
+  // The image of an object shrinks with the square of its distance.
+  cam.distance *= std::sqrt(static_cast<double>(first.validPixels()) / pixels);
+  return pcl_ncut_seg::renderView(mesh, cam, seed);
+}
+
+/** (b): the object (0.3 m) standing on a 4 m table, seen from 1 m, 60 degrees down. */
+pcl_ncut_seg::DepthView tableView(const pcl_ncut_seg::TriangleMesh& mesh) {
+  pcl_ncut_seg::CameraSettings cam;
+  // The object as renderView scales it, then lifted onto the table (z = 0).
+  pcl_ncut_seg::TriangleMesh scene = mesh;
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], mesh.vertices[i]);
+    hi[i % 3] = std::max(hi[i % 3], mesh.vertices[i]);
+  }
+  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double s = cam.object_diagonal / d;
+  for (std::size_t i = 0; i < scene.vertices.size(); ++i) {
+    const int k = static_cast<int>(i % 3);
+    const double base = k == 2 ? lo[2] : 0.5 * (lo[k] + hi[k]);
+    scene.vertices[i] = static_cast<float>(s * (mesh.vertices[i] - base));
+  }
+  const auto table = static_cast<std::uint32_t>(scene.numVertices());
+  for (const float v : {-2.f, -2.f, 0.f, 2.f, -2.f, 0.f, 2.f, 2.f, 0.f, -2.f, 2.f, 0.f})
+    scene.vertices.push_back(v);
+  for (const std::uint32_t f : {0u, 1u, 2u, 0u, 2u, 3u})
+    scene.faces.push_back(table + f);
+  const auto face = static_cast<std::uint32_t>(scene.num_original_faces);
+  scene.original_face.insert(scene.original_face.end(), {face, face});
+  ++scene.num_original_faces;
+  // Camera axes (columns): x right = +x, y down, z forward = 60 degrees below the horizon.
+  const double c = 0.5, sn = std::sqrt(3.0) / 2;
+  pcl_ncut_seg::CameraPose pose;
+  pose.rotation = {1, 0, 0, 0, -sn, c, 0, -c, -sn};
+  const double centre_z = 0.5 * s * (hi[2] - lo[2]);
+  pose.origin = {0, -c, centre_z + sn};
+  return pcl_ncut_seg::renderMesh(scene, cam, pose, 7);
+}
+
+/** Wall and CPU seconds of a run. */
+struct Seconds {
+  double wall = 0, cpu = 0;
+};
+
+/** Ours with the defaults on the organized cloud; the segments through *segments. */
+Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::size_t* segments) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(pcl_ncut_seg::toPclCloud(view));
+  seg.setNumberOfThreads(threads);
+  std::vector<pcl::PointIndices> out;
+  const double start = now(), cpu = cpuNow();
+  seg.extract(out);
+  const Seconds secs{now() - start, cpuNow() - cpu};
+  *segments = out.size();
+  return secs;
+}
+
+/** Normals, supervoxels and LCCP on the valid points, as the evaluator runs them. */
+Seconds timeLccp(const pcl_ncut_seg::DepthView& view, std::size_t* segments) {
+  const std::vector<float> xyz = validPoints(view);
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
+    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+  }
+  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  pcl_ncut_seg::PeerParams params; // PCL's tutorial resolutions, in metres
+  params.voxel_fraction = 0.0075 / d;
+  params.seed_fraction = 0.03 / d;
+  const auto& o = view.pose.origin;
+  params.viewpoint = std::array<float, 3>{
+      {static_cast<float>(o[0]), static_cast<float>(o[1]), static_cast<float>(o[2])}};
+  std::vector<int> labels;
+  std::string error;
+  const double start = now(), cpu = cpuNow();
+  if (!pcl_ncut_seg::segmentWithPclPeer(xyz, false, params, labels, &error)) {
+    std::fprintf(stderr, "LCCP failed: %s\n", error.c_str());
+    std::exit(2);
+  }
+  const Seconds secs{now() - start, cpuNow() - cpu};
+  *segments = std::set<int>(labels.begin(), labels.end()).size();
+  return secs;
+}
+
+void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
+  std::size_t ours_segments = 0, all_segments = 0, lccp_segments = 0;
+  const Seconds one = timeOurs(view, 1, &ours_segments);
+  const Seconds all = timeOurs(view, 0, &all_segments);
+  const Seconds lccp = timeLccp(view, &lccp_segments);
+  std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name,
+              view.validPixels(), one.wall, one.cpu, all.wall, cores, lccp.wall, lccp.cpu,
+              ours_segments, lccp_segments);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  std::string data = PCL_NCUT_SEG_BENCH_DATA;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--data") && i + 1 < argc) {
+      data = argv[++i];
+    } else {
+      std::printf("Usage: %s [--data DIR]\nTimes ours and supervoxels + LCCP on two rendered "
+                  "640 x 480 depth frames of DIR/models/bunny.off (see the source's header).\n",
+                  argv[0]);
+      return std::strcmp(argv[i], "-h") && std::strcmp(argv[i], "--help") ? 1 : 0;
+    }
+  }
+  const std::string path = data + "/models/bunny.off";
+  pcl_ncut_seg::TriangleMesh mesh;
+  std::string error;
+  if (!std::ifstream(path) || !pcl_ncut_seg::readOff(path, mesh, &error)) {
+    std::printf("skipped: %s not found or unreadable (pass --data DIR)\n", path.c_str());
+    return 0;
+  }
+  pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
+  const pcl_ncut_seg::DepthView object = objectView(mesh, 20000);
+  const pcl_ncut_seg::DepthView frame = tableView(mesh);
+  const unsigned cores = std::max(1u, static_cast<unsigned>(sysconf(_SC_NPROCESSORS_ONLN)));
+  std::printf("pcl_ncut_seg_bench_views: 640 x 480 frames, load average %s\n",
+              pcl_ncut_seg_bench::loadAverage().c_str());
+  std::printf("%-34s %7s  %13s  %10s  %13s  %s\n", "cloud", "points", "ours 1 thread", "ours all",
+              "LCCP", "segments ours / LCCP");
+  measure("(a) bunny alone, 0.3 m", object, cores);
+  measure("(b) bunny on a table, full frame", frame, cores);
+  std::printf("Seconds, wall / CPU (ours on all n cores: wall). Ours with the defaults on the\n"
+              "organized cloud; LCCP: PCL's normals, supervoxels (7.5 mm voxels, 3 cm seeds) and\n"
+              "LCCP on the valid points (one thread). Segments: distinct labels.\n");
+  return 0;
+}
