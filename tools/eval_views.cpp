@@ -50,7 +50,7 @@ struct Sums {
 struct ModelSums {
   std::vector<std::string> order;
   std::map<std::string, Sums> by_method;
-  double faces = 0;
+  double faces = 0, points = 0;
 
   void add(const std::string& method, const SegmentationScores& s, double segments,
            double seconds) {
@@ -185,11 +185,12 @@ void scoreView(const Model& m, const Options& opt, const ScoredView& s,
     sums.add("human", h, segments, 0);
   }
   sums.faces += static_cast<double>(s.seen.size());
+  sums.points += static_cast<double>(s.view.validPixels());
 }
 
 } // namespace
 
-void scoreViews(const Model& m, const Options& opt, Report& report) {
+double scoreViews(const Model& m, const Options& opt, Report& report) {
   double whole_seconds = 0;
   std::vector<int> whole;
   if (opt.has("ours"))
@@ -212,6 +213,7 @@ void scoreViews(const Model& m, const Options& opt, Report& report) {
     r.seconds = s.seconds / n;
     report.rows.push_back(r);
   }
+  return sums.points / opt.views;
 }
 
 } // namespace eval

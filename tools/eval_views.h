@@ -15,8 +15,9 @@ namespace pcl_ncut_seg {
 namespace eval {
 
 /** \brief One row per method for the model (mode "view"): the means over its views of the
- * scores, the segments and the seconds per view, and the faces seen per view. */
-void scoreViews(const Model& m, const Options& opt, Report& report);
+ * scores, the segments and the seconds per view, and the faces seen per view.
+ * \return the mean number of valid points (pixels that hit the surface) per view. */
+double scoreViews(const Model& m, const Options& opt, Report& report);
 
 } // namespace eval
 } // namespace pcl_ncut_seg

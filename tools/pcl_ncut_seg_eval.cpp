@@ -297,8 +297,9 @@ void evaluate(const Options& opt) {
   report.ids = bench.ids;
   for (const int id : bench.ids) {
     const Model m = loadModel(bench, id, opt.hasMode("given") && opt.has("ours"));
+    std::string points; // in view mode, the valid points per view
     if (opt.views > 0) {
-      pcl_ncut_seg::eval::scoreViews(m, opt, report);
+      points = ", " + fixed(pcl_ncut_seg::eval::scoreViews(m, opt, report), 0) + " points per view";
     } else {
       if (opt.has("ours"))
         scoreOurs(m, opt, settings, report);
@@ -307,9 +308,8 @@ void evaluate(const Options& opt) {
     }
     if (!opt.quiet)
       std::cout << "model " << id << " (" << m.category << ", " << m.n << " faces, "
-                << m.humans.size()
-                << " human segmentations):" << pcl_ncut_seg::eval::modelResults(report, id)
-                << std::endl;
+                << m.humans.size() << " human segmentations" << points
+                << "):" << pcl_ncut_seg::eval::modelResults(report, id) << std::endl;
   }
   writeReports(opt, report);
   if (!opt.quiet)
