@@ -17,7 +17,9 @@ std::string fixed(double v, int digits) {
 
 namespace {
 
-const char* kMetricNames[] = {"1 - RI", "Hamming", "Rm", "Rf", "GCE", "LCE"};
+/// The metrics, then (view mode only) the segments and seconds per view.
+const char* kMetricNames[] = {
+    "1 - RI", "Hamming", "Rm", "Rf", "GCE", "LCE", "segments per view", "seconds per view"};
 
 double metric(const SegmentationScores& s, int m) {
   const double v[] = {s.rand_index_error, s.hamming, s.hamming_rm, s.hamming_rf, s.gce, s.lce};
@@ -107,6 +109,13 @@ void overallTable(const Report& report, const Means& all, const std::string& mod
   }
 }
 
+/** Column k of a mean: a metric (0-5), the segments (6) or the seconds (7), as text. */
+std::string column(const Mean& m, int k) {
+  if (k < 6)
+    return fixed(metric(m.scores, k));
+  return k == 6 ? fixed(m.segments, 1) : fixed(m.seconds, 2);
+}
+
 /** One mode's table of a metric per category. */
 void categoryTable(const Report& report, const Means& all, const std::string& mode, int k,
                    std::ostringstream& md) {
@@ -123,7 +132,7 @@ void categoryTable(const Report& report, const Means& all, const std::string& mo
     md << "| " << (c == "Overall" ? "**Overall**" : c) << " |";
     for (const auto& method : method_list) {
       const auto it = all.find({mode, method, c});
-      md << ' ' << (it == all.end() ? "" : fixed(metric(it->second.result().scores, k))) << " |";
+      md << ' ' << (it == all.end() ? "" : column(it->second.result(), k)) << " |";
     }
     md << '\n';
   }
@@ -171,7 +180,7 @@ std::string tablesMarkdown(const Report& report) {
   md << "<!-- written by pcl_ncut_seg_eval -->\n";
   for (const auto& mode : report.modes) {
     overallTable(report, all, mode, md);
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < (mode == "view" ? 8 : 6); ++k)
       categoryTable(report, all, mode, k, md);
   }
   return md.str();
