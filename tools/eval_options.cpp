@@ -187,7 +187,10 @@ void printHelp() {
       "Syntax: pcl_ncut_seg_eval <psb_dir> <out_dir> [options]\n"
       "Scores segmenters on the Princeton Segmentation Benchmark (points at face centroids)\n"
       "and writes out_dir/models.csv, categories.csv and tables.md. The algorithm's options\n"
-      "are pcl_ncut_seg's, for 'ours'.\n  where options are:\n");
+      "are pcl_ncut_seg's, for 'ours'. With -views V it renders V seeded depth-camera views of\n"
+      "each model instead (organized, noisy, NaN where nothing was hit), segments each and\n"
+      "scores it on the faces it sees (mode 'view'; 'ours whole': ours on the whole object,\n"
+      "scored on the same faces).\n  where options are:\n");
   printFlags(evalFlags());
 }
 
