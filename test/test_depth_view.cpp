@@ -312,3 +312,18 @@ TEST(ViewScoring, EachSeenFaceTakesItsPixelsMajorityLabel) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(DepthView, ReadsAResolution) {
+  int w = 0, h = 0;
+  EXPECT_TRUE(pcl_ncut_seg::parseResolution("640x480", w, h));
+  EXPECT_EQ(w, 640);
+  EXPECT_EQ(h, 480);
+  EXPECT_TRUE(pcl_ncut_seg::parseResolution("4096x8", w, h));
+  for (const char* bad : {"", "x", "640", "640x", "x480", "640x480x2", "-640x480", "640 x 480",
+                          "7x480", "640x4097", "1e3x480", "0000000640x480"})
+    EXPECT_FALSE(pcl_ncut_seg::parseResolution(bad, w, h)) << bad;
+}
+
+} // namespace

@@ -101,11 +101,11 @@ TEST_F(ViewTool, FailsWithOneLineAndNoFile) {
   for (const std::string& args :
        {box + out + " -view", box + out + " -view x", box + out + " -view -1",
         box + out + " -view 1 -resolution 4x48", box + out + " -view 1 -resolution 64x1e9",
-        box + out + " -view 1 -range_noise -0.1", box + out + " -view 1 -resolution 64.5x48",
-        box + out + " -view 1 -resolution 64", box + out + " -view 1 -resolution",
-        box + out + " -resolution 64x48", box + out + " -range_noise 0",
-        box + out + " -view 1 -n 100", box + out + " -view 1 -centroids",
-        (dir_ / "empty.off").string() + " " + out + " -view 1",
+        box + out + " -view 1 -resolution 4097x8", box + out + " -view 1 -range_noise -0.1",
+        box + out + " -view 1 -resolution 64.5x48", box + out + " -view 1 -resolution 64",
+        box + out + " -view 1 -resolution", box + out + " -resolution 64x48",
+        box + out + " -range_noise 0", box + out + " -view 1 -n 100",
+        box + out + " -view 1 -centroids", (dir_ / "empty.off").string() + " " + out + " -view 1",
         (dir_ / "none.off").string() + " " + out + " -view 1",
         box + (dir_ / "no" / "v.pcd").string() + " -view 1"}) {
     EXPECT_EQ(run(args), 1) << args;

@@ -263,7 +263,7 @@ bool parseResolution(const std::string& text, int& width, int& height) {
     return false;
   const long w = std::strtol(text.substr(0, x).c_str(), nullptr, 10);
   const long h = std::strtol(text.substr(x + 1).c_str(), nullptr, 10);
-  if (x > 6 || text.size() - x - 1 > 6 || w < 8 || h < 8 || w > 10000 || h > 10000)
+  if (x > 6 || text.size() - x - 1 > 6 || w < 8 || h < 8 || w > 4096 || h > 4096)
     return false;
   width = static_cast<int>(w);
   height = static_cast<int>(h);

@@ -90,7 +90,7 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
-/** \brief An image size "WxH" (e.g. "640x480"), each side an integer in [8, 10000].
+/** \brief An image size "WxH" (e.g. "640x480"), each side an integer in [8, 4096].
  * \return false if the text is not one. */
 bool parseResolution(const std::string& text, int& width, int& height);
 

@@ -128,7 +128,7 @@ std::vector<Flag> viewFlags() {
               "score V seeded depth-camera views of each model instead of the whole object, each "
               "on the faces it sees (ours also on the whole object, on the same faces)",
               "off", 1, 1000),
-      textFlag("-resolution", "WxH", "the views' image size in pixels, each side in [8, 10000]",
+      textFlag("-resolution", "WxH", "the views' image size in pixels, each side in [8, 4096]",
                std::to_string(cam.width) + "x" + std::to_string(cam.height)),
       realFlag("-range_noise", "SIGMA",
                "the views' range noise in metres at 1 m; it grows with the depth squared (0: none)",
@@ -137,7 +137,7 @@ std::vector<Flag> viewFlags() {
   rows[1].check = [](const std::string& t, std::string* why) {
     int w = 0, h = 0;
     if (!pcl_ncut_seg::parseResolution(t, w, h))
-      *why = "expected WxH such as 640x480, each side in [8, 10000]";
+      *why = "expected WxH such as 640x480, each side in [8, 4096]";
     return why->empty();
   };
   return rows;

@@ -35,7 +35,7 @@ void printHelp(const char* name) {
       "  -seed S     random seed; the same seed gives the same points (default 1)\n"
       "  -centroids  one point per face at its centroid instead of random samples\n"
       "  -view S     a depth view from the random direction of seed S (an integer >= 0)\n"
-      "  -resolution WxH    the view's size in pixels, each side 8-10000 (default %dx%d)\n"
+      "  -resolution WxH    the view's size in pixels, each side 8-4096 (default %dx%d)\n"
       "  -range_noise SIG   the view's range noise in metres at 1 m, growing with the depth\n"
       "                     squared, 0-0.1 (0: none; default %g)\n"
       "  -h          this help\n",
@@ -75,7 +75,7 @@ bool readCamera(int argc, char** argv, pcl_ncut_seg::CameraSettings& cam, std::u
   const int at = pcl::console::find_argument(argc, argv, "-resolution");
   if (at >= 0 &&
       (at + 1 >= argc || !pcl_ncut_seg::parseResolution(argv[at + 1], cam.width, cam.height))) {
-    pcl::console::print_error("-resolution needs WxH such as 640x480, each side in [8, 10000].\n");
+    pcl::console::print_error("-resolution needs WxH such as 640x480, each side in [8, 4096].\n");
     return false;
   }
   return true;
