@@ -58,7 +58,7 @@ protected:
     std::string line;
     std::getline(in, line);
     EXPECT_EQ(line, "method,mode,id,category,faces,segments,seconds,one_minus_rand_index,"
-                    "hamming,hamming_rm,hamming_rf,gce,lce,human_segmentations");
+                    "hamming,hamming_rm,hamming_rf,gce,lce,human_segmentations,draw");
     while (std::getline(in, line)) {
       std::vector<std::string> cols;
       std::stringstream s(line);

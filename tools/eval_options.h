@@ -6,6 +6,7 @@
 #pragma once
 
 #include "cli/flags.h"
+#include "eval_sampling.h"
 
 #include <pcl_ncut_seg/parameters.h>
 
@@ -39,6 +40,7 @@ struct Options {
   std::vector<int> ids;           ///< empty: every off/<id>.off
   std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
   std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
+  SamplingOptions sampling;       ///< the points of each model; default: the face centroids
   bool quiet = false;
   pcl_ncut_seg::Parameters params; ///< -paper or the defaults, and the algorithm flags
 
