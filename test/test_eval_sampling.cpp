@@ -279,6 +279,7 @@ TEST(EvalSpread, RangesAndCountChangesOfATinyReport) {
                        fakeRow("ours", 1, 2, 0.15, 0.4, 5), fakeRow("ours", 21, 0, 0.5, 0.5, 2),
                        fakeRow("ours", 21, 1, 0.5, 0.5, 4), fakeRow("ours", 21, 2, 0.4, 0.5, 3)})
     report.rows.push_back(r);
+  report.rows.push_back(fakeRow("human", 1, 0, 0.1, 0.1, 3)); // once per model: no spread
   report.between_draws[{"ours", "auto", 21}] = 0.25;
   const std::vector<Spread> s = spreads(report);
   ASSERT_EQ(s.size(), 2u);

@@ -137,6 +137,8 @@ std::vector<Spread> spreads(const Report& report) {
   std::vector<Spread> out;
   for (const auto& key : order) {
     Fold& f = folds[key];
+    if (f.spread.draws < 2) // the human baseline: once per model
+      continue;
     for (int k = 0; k < 6; ++k)
       f.spread.range[k] = f.hi[k] - f.lo[k];
     const auto between = report.between_draws.find(key);
@@ -180,17 +182,21 @@ std::string spreadMarkdown(const Report& report) {
 }
 
 std::string spreadSummary(const Report& report) {
-  const auto means = spreadMeans(spreads(report));
+  const std::vector<Spread> all = spreads(report);
+  const auto means = spreadMeans(all);
+  const auto methods = firstSeen(all, [](const Spread& s) { return s.method; });
   std::ostringstream out;
-  for (const auto& [key, mean] : means) {
-    if (std::get<2>(key) != "Overall")
-      continue;
-    const SpreadMean m = mean.result();
-    out << std::get<0>(key) << ' ' << std::get<1>(key) << " over " << report.draws
-        << " draws: range 1-RI " << fixed(m.range[0]) << " Hamming " << fixed(m.range[1])
-        << " count changes on " << fixed(100 * m.changes, 0) << "% of models, 1-RI between draws "
-        << fixed(m.between) << "\n";
-  }
+  for (const auto& mode : report.modes)
+    for (const auto& method : methods) {
+      const auto it = means.find({mode, method, "Overall"});
+      if (it == means.end())
+        continue;
+      const SpreadMean m = it->second.result();
+      out << mode << ' ' << method << " over " << report.draws << " draws: range 1-RI "
+          << fixed(m.range[0]) << " Hamming " << fixed(m.range[1]) << " count changes on "
+          << fixed(100 * m.changes, 0) << "% of models, 1-RI between draws " << fixed(m.between)
+          << "\n";
+    }
   return out.str();
 }
 

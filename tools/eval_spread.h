@@ -25,7 +25,8 @@ struct Spread {
   bool countChanges() const { return segments_max != segments_min; }
 };
 
-/** \brief The spread of each (method, mode, model) with rows, in the order of their first row. */
+/** \brief The spread of each (method, mode, model) with rows from two draws or more, in the
+ * order of their first row (the human baseline, scored once per model, has none). */
 std::vector<Spread> spreads(const Report& report);
 
 /** \brief spread.csv: one line per method, mode and model. */
