@@ -58,7 +58,7 @@ protected:
     std::string line;
     std::getline(in, line);
     EXPECT_EQ(line, "method,mode,id,category,faces,segments,seconds,one_minus_rand_index,"
-                    "hamming,hamming_rm,hamming_rf,gce,lce,human_segmentations");
+                    "hamming,hamming_rm,hamming_rf,gce,lce,human_segmentations,draw");
     while (std::getline(in, line)) {
       std::vector<std::string> cols;
       std::stringstream s(line);
@@ -158,13 +158,53 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
                                   psb + " " + out + " -views 1 -thresholds 0.1,0.2",
                                   psb + " " + out + " -resolution 64x48",
                                   psb + " " + out + " -views 1 -range_noise -1",
-                                  psb + " " + out + " -views 1 -resolution 4x4"}) {
+                                  psb + " " + out + " -views 1 -resolution 4x4",
+                                  psb + " " + out + " -views 1 -samples 100",
+                                  psb + " " + out + " -noise 1",
+                                  psb + " " + out + " -draws 2",
+                                  psb + " " + out + " -samples 10 -permute",
+                                  psb + " " + out + " -samples 10 -draws 0",
+                                  psb + " " + out + " -samples 10 -density_ratio 0.5",
+                                  psb + " " + out + " -samples 10 -noise -1",
+                                  psb + " " + out + " -samples x"}) {
     EXPECT_EQ(run(args), 1) << args;
     const std::string err = stderrText();
     EXPECT_FALSE(err.empty()) << args;
     EXPECT_EQ(err.find('\n'), err.size() - 1) << "one line: " << err;
     EXPECT_TRUE(fs::is_empty(dir_ / "out")) << args;
   }
+}
+
+TEST_F(EvalTool, SamplesDrawsAndWritesTheSpread) {
+  const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
+                           " -methods one,octants -modes auto -samples 300 -draws 3 -noise 0.5 "
+                           "-density_ratio 2 -quiet";
+  ASSERT_EQ(run(args), 0) << stderrText();
+  std::ifstream in(dir_ / "out" / "models.csv");
+  std::string line;
+  std::getline(in, line);
+  std::map<std::string, int> draws; // method,draw -> rows
+  while (std::getline(in, line)) {
+    const std::string method = line.substr(0, line.find(','));
+    draws[method + "," + line.substr(line.rfind(',') + 1)]++;
+    if (method == "\"one\"") { // one segment scores as on the centroids, whatever the samples
+      EXPECT_NE(line.find(",6,1,"), std::string::npos) << line;
+    }
+  }
+  for (const char* method : {"\"one\"", "\"octants\""})
+    for (const char* d : {"0", "1", "2"})
+      EXPECT_EQ(draws[std::string(method) + "," + d], 1) << method << " draw " << d;
+  EXPECT_EQ(draws.size(), 6u);
+  std::ifstream spread(dir_ / "out" / "spread.csv");
+  std::getline(spread, line);
+  EXPECT_EQ(line.substr(0, 50), "method,mode,id,category,draws,segments_min,segment");
+  std::getline(spread, line);
+  EXPECT_EQ(line, "\"one\",auto,1,Human,3,1,1,0.000000,0.000000,0.000000,0.000000,0.000000,"
+                  "0.000000,0.000000");
+  std::ifstream tables(dir_ / "out" / "tables.md");
+  std::stringstream md;
+  md << tables.rdbuf();
+  EXPECT_NE(md.str().find("spread over 3 draws"), std::string::npos);
 }
 
 TEST_F(EvalTool, TakesTheToolsFlagsAndTheOldSpellings) {

@@ -156,12 +156,63 @@ void readViewOptions(const Flags& flags, Options& o) {
       throw Failure(std::string("-views scores the automatic mode with the parameters given; "
                                 "it takes no ") +
                     name);
+  if (o.sampling.active())
+    throw Failure("-views renders its own points; it takes no -samples");
   o.views = static_cast<int>(flags.integer("-views"));
   if (flags.has("-resolution"))
     pcl_ncut_seg::parseResolution(flags.text("-resolution"), o.camera.width, o.camera.height);
   if (flags.has("-range_noise"))
     o.camera.noise_at_1m = flags.real("-range_noise");
   o.modes = {"view"};
+}
+
+/** The sampling conditions: the points each model is segmented as, instead of its centroids. */
+std::vector<Flag> samplingFlags() {
+  return {
+      intFlag("-samples", "N",
+              "segment N points drawn on each mesh, uniformly by area (seeded by model and "
+              "draw), instead of one point per face centroid; each face takes the label of its "
+              "nearest sample (before noise). 0: the face centroids",
+              "0", 0, 1e9),
+      intFlag("-draws", "D",
+              "independent draws of the samples per model (with -samples); the reports add "
+              "spread.csv and the spread of every metric over the draws",
+              "1", 1, 1000),
+      realFlag("-density_ratio", "R",
+               "sample with a density gradient: R times denser at the low end of the mesh's "
+               "longest bounding-box axis than at its high end, linear in between (with "
+               "-samples)",
+               "1", 1, 1e6),
+      realFlag("-noise", "S",
+               "Gaussian noise, sigma S mean point spacings per coordinate, the spacing being "
+               "sqrt(surface area / N) (with -samples)",
+               "0", 0, 1e6),
+      switchFlag("-permute",
+                 "the draws are one sample set in different orders: draw 1 as sampled, the "
+                 "others in seeded random orders, labels mapped back (with -samples and -draws "
+                 ">= 2)"),
+  };
+}
+
+/** The sampling options, checked against each other. */
+SamplingOptions readSampling(const Flags& flags) {
+  SamplingOptions s;
+  if (flags.has("-samples"))
+    s.samples = static_cast<std::size_t>(flags.integer("-samples"));
+  if (flags.has("-draws"))
+    s.draws = static_cast<int>(flags.integer("-draws"));
+  if (flags.has("-density_ratio"))
+    s.density_ratio = flags.real("-density_ratio");
+  if (flags.has("-noise"))
+    s.noise = flags.real("-noise");
+  s.permute = flags.has("-permute");
+  if (!s.active())
+    for (const char* name : {"-draws", "-density_ratio", "-noise", "-permute"})
+      if (flags.has(name))
+        throw Failure(std::string(name) + " needs -samples N (N > 0)");
+  if (s.permute && s.draws < 2)
+    throw Failure("-permute needs -draws 2 or more (draw 1 is the drawn order)");
+  return s;
 }
 
 /** The algorithm's defaults in the evaluator: those of the library, on one thread. */
@@ -177,6 +228,7 @@ std::vector<Flag> evalFlags() {
   std::vector<Flag> table;
   append(table, runFlags(), "evaluation");
   append(table, viewFlags(), "views (57 degrees across, the model scaled to 0.3 m, 1 m away)");
+  append(table, samplingFlags(), "sampling conditions");
   append(table, algorithmFlags(evalDefaults()));
   append(table, commonFlags());
   return table;
@@ -185,12 +237,13 @@ std::vector<Flag> evalFlags() {
 void printHelp() {
   pcl::console::print_info(
       "Syntax: pcl_ncut_seg_eval <psb_dir> <out_dir> [options]\n"
-      "Scores segmenters on the Princeton Segmentation Benchmark (points at face centroids)\n"
-      "and writes out_dir/models.csv, categories.csv and tables.md. The algorithm's options\n"
-      "are pcl_ncut_seg's, for 'ours'. With -views V it renders V seeded depth-camera views of\n"
-      "each model instead (organized, noisy, NaN where nothing was hit), segments each and\n"
-      "scores it on the faces it sees (mode 'view'; 'ours whole': ours on the whole object,\n"
-      "scored on the same faces).\n  where options are:\n");
+      "Scores segmenters on the Princeton Segmentation Benchmark (points at face centroids,\n"
+      "or sampled with -samples) and writes out_dir/models.csv, categories.csv, tables.md\n"
+      "(and spread.csv with -draws). The algorithm's options are pcl_ncut_seg's, for 'ours'.\n"
+      "With -views V it renders V seeded depth-camera views of each model instead (organized,\n"
+      "noisy, NaN where nothing was hit), segments each and scores it on the faces it sees\n"
+      "(mode 'view'; 'ours whole': ours on the whole object, scored on the same faces).\n"
+      "  where options are:\n");
   printFlags(evalFlags());
 }
 
@@ -221,6 +274,7 @@ Options readOptions(const Flags& flags) {
     parseNumbers(flags.text("-thresholds"), 0, 1e308, o.thresholds, &why);
   if (flags.has("-fractions"))
     parseNumbers(flags.text("-fractions"), 0, 0.5, o.fractions, &why);
+  o.sampling = readSampling(flags);
   o.quiet = flags.has("-quiet");
   readViewOptions(flags, o);
   return o;

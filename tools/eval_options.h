@@ -7,6 +7,7 @@
 
 #include "cli/flags.h"
 #include "depth_view.h"
+#include "eval_sampling.h"
 
 #include <pcl_ncut_seg/parameters.h>
 
@@ -40,6 +41,7 @@ struct Options {
   std::vector<int> ids;           ///< empty: every off/<id>.off
   std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
   std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
+  SamplingOptions sampling;       ///< the points of each model; default: the face centroids
   bool quiet = false;
   int views = 0;                       ///< depth-camera views per model; 0: the whole objects
   pcl_ncut_seg::CameraSettings camera; ///< the views' camera (-resolution, -range_noise)

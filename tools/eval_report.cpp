@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -15,31 +16,41 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+const char* const kMetricNames[6] = {"1 - RI", "Hamming", "Rm", "Rf", "GCE", "LCE"};
+
+double metricValue(const SegmentationScores& s, int k) {
+  const double v[] = {s.rand_index_error, s.hamming, s.hamming_rm, s.hamming_rf, s.gce, s.lce};
+  return v[k];
+}
+
 namespace {
 
 /// The metrics, then (view mode only) the segments and seconds per view.
-const char* kMetricNames[] = {
+const char* kTableMetricNames[] = {
     "1 - RI", "Hamming", "Rm", "Rf", "GCE", "LCE", "segments per view", "seconds per view"};
 
 double metric(const SegmentationScores& s, int m) {
-  const double v[] = {s.rand_index_error, s.hamming, s.hamming_rm, s.hamming_rf, s.gce, s.lce};
-  return v[m];
+  return metricValue(s, m);
 }
 
 /** The mean of rows. */
 struct Mean {
   SegmentationScores scores;
   double segments = 0, seconds = 0;
-  std::size_t models = 0;
+  std::size_t models = 0, rows = 0;
+  std::set<int> ids;
   void add(const Row& r) {
     scores += r.scores;
     segments += r.segments;
     seconds += r.seconds;
-    ++models;
+    ++rows;
+    ids.insert(r.id);
+    models = ids.size();
   }
+  /** The mean over the rows: over the models, each model's draws weighing alike. */
   Mean result() const {
     Mean m = *this;
-    const double d = static_cast<double>(std::max<std::size_t>(models, 1));
+    const double d = static_cast<double>(std::max<std::size_t>(rows, 1));
     m.scores = scores / d;
     m.segments = segments / d;
     m.seconds = seconds / d;
@@ -120,7 +131,7 @@ std::string column(const Mean& m, int k) {
 void categoryTable(const Report& report, const Means& all, const std::string& mode, int k,
                    std::ostringstream& md) {
   const std::vector<std::string> method_list = methods(report);
-  md << "\n#### " << modeTitle(mode, false) << ": " << kMetricNames[k]
+  md << "\n#### " << modeTitle(mode, false) << ": " << kTableMetricNames[k]
      << " per category\n\n| category |";
   for (const auto& method : method_list)
     md << ' ' << method << " |";
@@ -143,13 +154,14 @@ void categoryTable(const Report& report, const Means& all, const std::string& mo
 std::string modelsCsv(const Report& report) {
   std::ostringstream csv;
   csv << "method,mode,id,category,faces,segments,seconds,one_minus_rand_index,hamming,"
-         "hamming_rm,hamming_rf,gce,lce,human_segmentations\n";
+         "hamming_rm,hamming_rf,gce,lce,human_segmentations,draw\n";
   for (const Row& r : report.rows)
     csv << '"' << r.method << "\"," << r.mode << ',' << r.id << ',' << r.category << ',' << r.faces
         << ',' << r.segments << ',' << fixed(r.seconds, 4) << ','
         << fixed(r.scores.rand_index_error, 6) << ',' << fixed(r.scores.hamming, 6) << ','
         << fixed(r.scores.hamming_rm, 6) << ',' << fixed(r.scores.hamming_rf, 6) << ','
-        << fixed(r.scores.gce, 6) << ',' << fixed(r.scores.lce, 6) << ',' << r.humans << '\n';
+        << fixed(r.scores.gce, 6) << ',' << fixed(r.scores.lce, 6) << ',' << r.humans << ','
+        << r.draw << '\n';
   return csv.str();
 }
 
@@ -207,9 +219,10 @@ std::string modelResults(const Report& report, int id) {
   std::ostringstream out;
   for (const Row& r : report.rows)
     if (r.id == id)
-      out << " " << r.method << "/" << r.mode << " " << fixed(r.scores.rand_index_error) << "/"
-          << fixed(r.scores.hamming) << " (" << r.segments << " seg, " << fixed(r.seconds, 2)
-          << " s);";
+      out << " " << r.method << "/" << r.mode
+          << (report.draws > 1 ? " draw " + std::to_string(r.draw + 1) : std::string()) << " "
+          << fixed(r.scores.rand_index_error) << "/" << fixed(r.scores.hamming) << " ("
+          << r.segments << " seg, " << fixed(r.seconds, 2) << " s);";
   return out.str();
 }
 

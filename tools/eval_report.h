@@ -7,7 +7,9 @@
 #include "psb_metrics.h"
 
 #include <cstddef>
+#include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -17,6 +19,7 @@ namespace eval {
 struct Row {
   std::string method, mode, category;
   int id = 0;
+  int draw = 0; ///< which draw of the samples (0 for the face centroids)
   std::size_t faces = 0;
   double segments = 0, seconds = 0;
   SegmentationScores scores;
@@ -28,6 +31,9 @@ struct Report {
   std::vector<Row> rows;
   std::vector<std::string> modes; ///< as given on the command line
   std::vector<int> ids;           ///< the models, in order
+  int draws = 1;                  ///< draws per model (-draws)
+  /// (method, mode, id) -> 1 - RI between the face labels of two draws, mean over the pairs
+  std::map<std::tuple<std::string, std::string, int>, double> between_draws;
 };
 
 /** \brief models.csv: one line per row. */
@@ -40,6 +46,10 @@ std::string tablesMarkdown(const Report& report);
 std::string summary(const Report& report);
 /** \brief A model's results: each method's 1 - RI / Hamming, segments and time (stdout). */
 std::string modelResults(const Report& report, int id);
+
+/** \brief The six metrics by number: 1 - RI, Hamming, Rm, Rf, GCE, LCE. */
+extern const char* const kMetricNames[6];
+double metricValue(const SegmentationScores& s, int k);
 
 /** \brief Fixed-point text with this many digits. */
 std::string fixed(double v, int digits = 3);

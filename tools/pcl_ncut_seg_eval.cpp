@@ -5,9 +5,11 @@
  *   pcl_ncut_seg_eval <psb_dir> <out_dir> [options]
  *
  * For each mesh <psb_dir>/off/<id>.off: one point at each face's centroid (so each point
- * carries its face's human label), a segmentation by each method, and the metrics against every
- * human segmentation <psb_dir>/seg/<id>/<id>_<k>.seg, averaged per model and then over models.
- * Writes <out_dir>/models.csv, categories.csv and tables.md.
+ * carries its face's human label), or the samples of a sampling condition (-samples, each face
+ * then takes its nearest sample's label), a segmentation by each method, and the metrics
+ * against every human segmentation <psb_dir>/seg/<id>/<id>_<k>.seg, averaged per model and then
+ * over models. Writes <out_dir>/models.csv, categories.csv and tables.md (and spread.csv, the
+ * spread over the draws, with -draws).
  */
 #include "cli/algorithm_flags.h"
 #include "cli/console.h"
@@ -16,6 +18,8 @@
 #include "eval_model.h"
 #include "eval_options.h"
 #include "eval_report.h"
+#include "eval_sampling.h"
+#include "eval_spread.h"
 #include "eval_views.h"
 #include "mesh_sampling.h"
 #include "psb_metrics.h"
@@ -28,6 +32,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -50,6 +55,7 @@ using pcl_ncut_seg::eval::fixed;
 using pcl_ncut_seg::eval::Model;
 using pcl_ncut_seg::eval::Report;
 using pcl_ncut_seg::eval::Row;
+using pcl_ncut_seg::eval::SampledCloud;
 using pcl_ncut_seg::eval::secondsSince;
 using pcl_ncut_seg::eval::segmentsToLabels;
 
@@ -128,6 +134,22 @@ Model loadModel(const Benchmark& b, int id, bool need_count) {
 
 // ---------------------------------------------------------------------------------- scoring
 
+/** One draw of a model's points, and every method's face labels on each draw so far, by
+ * (method, mode), for the disagreement between draws. */
+using DrawLabels = std::map<std::pair<std::string, std::string>, std::vector<std::vector<int>>>;
+struct Draw {
+  SampledCloud cloud;
+  int index = 0;
+  DrawLabels* labels = nullptr;
+
+  std::size_t points() const { return cloud.xyz.size() / 3; }
+  /** The faces' labels from the points' (mapped back to the drawn order). */
+  std::vector<int> faces(const std::vector<int>& point_labels) const {
+    return pcl_ncut_seg::eval::faceLabels(pcl_ncut_seg::eval::mappedBack(point_labels, cloud.order),
+                                          cloud.nearest);
+  }
+};
+
 /** A row of the model, without its mode. */
 Row rowOf(const Model& m) {
   Row r;
@@ -138,18 +160,37 @@ Row rowOf(const Model& m) {
   return r;
 }
 
-/** A method's labels scored against the people's. */
-Row score(const Model& m, const std::string& method, const std::vector<int>& labels,
-          double seconds) {
+/** A method's face labels scored against the people's. */
+Row score(const Model& m, const std::string& method, const std::vector<int>& labels, double seconds,
+          int draw = 0) {
   Row r = rowOf(m);
   r.method = method;
+  r.draw = draw;
   r.segments = static_cast<double>(countSegments(labels));
   r.seconds = seconds;
   r.scores = againstHumans(labels, m.humans, m.area);
   return r;
 }
 
+/** A method's points' labels on a draw, as face labels, scored; kept for the spread. */
+Row scoreDraw(const Model& m, const Draw& d, const std::string& method, const std::string& mode,
+              const std::vector<int>& point_labels, double seconds) {
+  const std::vector<int> faces = d.faces(point_labels);
+  Row r = score(m, method, faces, seconds, d.index);
+  r.mode = mode;
+  if (d.labels)
+    (*d.labels)[{method, mode}].push_back(faces);
+  return r;
+}
+
 /** Methods that do not take a count give the same result in both modes: a row for each. */
+void addBothModes(const Options& opt, const Model& m, const Draw& d, const std::string& method,
+                  const std::vector<int>& point_labels, double seconds, Report& report) {
+  for (const auto& mode : opt.modes)
+    report.rows.push_back(scoreDraw(m, d, method, mode, point_labels, seconds));
+}
+
+/** A row that is the same in both modes (the human baseline), once per mode. */
 void addBothModes(const Options& opt, Row r, Report& report) {
   for (const auto& mode : opt.modes) {
     r.mode = mode;
@@ -194,12 +235,13 @@ std::vector<OursSetting> oursSettings(const Options& opt) {
 
 /** 'ours' on a model: a row per auto setting (the first extract() runs both stages, the later
  * ones reuse the analysis), and the given-count row. */
-void scoreOurs(const Model& m, const Options& opt, const std::vector<OursSetting>& settings,
-               Report& report) {
+void scoreOurs(const Model& m, const Draw& d, const Options& opt,
+               const std::vector<OursSetting>& settings, Report& report) {
+  const std::vector<float>& xyz = d.cloud.xyz;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(m.n);
-  for (std::size_t i = 0; i < m.n; ++i)
-    (*cloud)[i] = pcl::PointXYZ(m.xyz[3 * i], m.xyz[3 * i + 1], m.xyz[3 * i + 2]);
+  cloud->resize(d.points());
+  for (std::size_t i = 0; i < d.points(); ++i)
+    (*cloud)[i] = pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
   Segmenter seg;
   seg.setInputCloud(cloud);
   std::vector<pcl::PointIndices> segments;
@@ -215,10 +257,9 @@ void scoreOurs(const Model& m, const Options& opt, const std::vector<OursSetting
     }
     if (!opt.hasMode("auto"))
       break;
-    Row r = score(m, settings[t].name, segmentsToLabels(segments, m.n),
-                  t == 0 ? secs : analysis_seconds + secs);
-    r.mode = "auto";
-    report.rows.push_back(r);
+    report.rows.push_back(scoreDraw(m, d, settings[t].name, "auto",
+                                    segmentsToLabels(segments, d.points()),
+                                    t == 0 ? secs : analysis_seconds + secs));
   }
   if (opt.hasMode("given")) {
     pcl_ncut_seg::Parameters given = opt.params;
@@ -227,15 +268,13 @@ void scoreOurs(const Model& m, const Options& opt, const std::vector<OursSetting
     configure(seg, given);
     const auto start = std::chrono::steady_clock::now();
     seg.extract(segments);
-    Row r =
-        score(m, "ours", segmentsToLabels(segments, m.n), analysis_seconds + secondsSince(start));
-    r.mode = "given";
-    report.rows.push_back(r);
+    report.rows.push_back(scoreDraw(m, d, "ours", "given", segmentsToLabels(segments, d.points()),
+                                    analysis_seconds + secondsSince(start)));
   }
 }
 
 /** PCL's LCCP and CPC on a model. */
-void scorePeers(const Model& m, const Options& opt, Report& report) {
+void scorePeers(const Model& m, const Draw& d, const Options& opt, Report& report) {
   for (const char* peer : {"lccp", "cpc"}) {
     if (!opt.has(peer))
       continue;
@@ -244,25 +283,25 @@ void scorePeers(const Model& m, const Options& opt, Report& report) {
     const auto start = std::chrono::steady_clock::now();
     // CPC reports every failed RANSAC draw as an error; they are part of how it works.
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    const bool ok = pcl_ncut_seg::segmentWithPclPeer(m.xyz, std::string(peer) == "cpc",
+    const bool ok = pcl_ncut_seg::segmentWithPclPeer(d.cloud.xyz, std::string(peer) == "cpc",
                                                      pcl_ncut_seg::PeerParams(), labels, &error);
     pcl::console::setVerbosityLevel(pcl::console::L_WARN);
     if (!ok)
       throw Failure(std::string(peer) + " on model " + m.name + ": " + error);
-    addBothModes(opt, score(m, peer, labels, secondsSince(start)), report);
+    addBothModes(opt, m, d, peer, labels, secondsSince(start), report);
   }
 }
 
 /** The baselines: one segment, the octants, and each person against the others. */
-void scoreBaselines(const Model& m, const Options& opt, Report& report) {
+void scoreBaselines(const Model& m, const Draw& d, const Options& opt, Report& report) {
   if (opt.has("one"))
-    addBothModes(opt, score(m, "one", std::vector<int>(m.n, 0), 0), report);
+    addBothModes(opt, m, d, "one", std::vector<int>(d.points(), 0), 0, report);
   if (opt.has("octants")) {
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<int> labels = pcl_ncut_seg::segmentOctants(m.xyz);
-    addBothModes(opt, score(m, "octants", labels, secondsSince(start)), report);
+    const std::vector<int> labels = pcl_ncut_seg::segmentOctants(d.cloud.xyz);
+    addBothModes(opt, m, d, "octants", labels, secondsSince(start), report);
   }
-  if (!opt.has("human") || m.humans.size() < 2)
+  if (!opt.has("human") || m.humans.size() < 2 || d.index > 0)
     return;
   Row r = rowOf(m); // the benchmark's human baseline
   r.method = "human";
@@ -272,20 +311,64 @@ void scoreBaselines(const Model& m, const Options& opt, Report& report) {
 
 // ---------------------------------------------------------------------------------- reports
 
-/** The three reports, each written whole and named only once all three are. */
+/** The reports (spread.csv too with draws), each written whole and named only once all are. */
 void writeReports(const Options& opt, const Report& report) {
   const fs::path dir(opt.out_dir);
-  const std::pair<const char*, std::string> files[] = {
+  const bool spread = report.draws > 1;
+  std::vector<std::pair<const char*, std::string>> files = {
       {"models.csv", pcl_ncut_seg::eval::modelsCsv(report)},
       {"categories.csv", pcl_ncut_seg::eval::categoriesCsv(report)},
-      {"tables.md", pcl_ncut_seg::eval::tablesMarkdown(report)}};
-  AtomicFile out[3];
-  for (int i = 0; i < 3; ++i)
+      {"tables.md", pcl_ncut_seg::eval::tablesMarkdown(report) +
+                        (spread ? pcl_ncut_seg::eval::spreadMarkdown(report) : "")}};
+  if (spread)
+    files.emplace_back("spread.csv", pcl_ncut_seg::eval::spreadCsv(report));
+  std::vector<AtomicFile> out(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i)
     if (!out[i].open((dir / files[i].first).string()) || !writeText(out[i], files[i].second))
       throw Failure("");
   for (AtomicFile& file : out)
     if (!file.commit())
       throw Failure("");
+}
+
+/** Draw d of a model's points under the sampling condition (the centroids without one). */
+Draw makeDraw(const Model& m, const Options& opt, int index, DrawLabels& labels) {
+  Draw d;
+  d.index = index;
+  d.labels = &labels;
+  try {
+    d.cloud = pcl_ncut_seg::eval::makeCloud(m.mesh, m.xyz, opt.sampling, m.id, index);
+  } catch (const std::exception& e) {
+    throw Failure("model " + m.name + ": " + e.what());
+  }
+  return d;
+}
+
+/** Per (method, mode): 1 - RI between the face labels of every two draws, their mean. */
+void addBetweenDraws(const Model& m, const DrawLabels& labels, Report& report) {
+  for (const auto& [key, draws] : labels) {
+    double sum = 0;
+    std::size_t pairs = 0;
+    for (std::size_t a = 0; a < draws.size(); ++a)
+      for (std::size_t b = a + 1; b < draws.size(); ++b, ++pairs)
+        sum += pcl_ncut_seg::compareSegmentations(draws[a], draws[b], {}).rand_index_error;
+    if (pairs > 0)
+      report.between_draws[{key.first, key.second, m.id}] = sum / static_cast<double>(pairs);
+  }
+}
+
+/** Every method on every draw of a model. */
+void scoreModel(const Model& m, const Options& opt, const std::vector<OursSetting>& settings,
+                Report& report) {
+  DrawLabels labels;
+  for (int index = 0; index < opt.sampling.draws; ++index) {
+    const Draw d = makeDraw(m, opt, index, labels);
+    if (opt.has("ours"))
+      scoreOurs(m, d, opt, settings, report);
+    scorePeers(m, d, opt, report);
+    scoreBaselines(m, d, opt, report);
+  }
+  addBetweenDraws(m, labels, report);
 }
 
 /** Score every method on every model, print a line per model, write the reports. */
@@ -295,16 +378,14 @@ void evaluate(const Options& opt) {
   Report report;
   report.modes = opt.modes;
   report.ids = bench.ids;
+  report.draws = opt.sampling.draws;
   for (const int id : bench.ids) {
     const Model m = loadModel(bench, id, opt.hasMode("given") && opt.has("ours"));
     std::string points; // in view mode, the valid points per view
     if (opt.views > 0) {
       points = ", " + fixed(pcl_ncut_seg::eval::scoreViews(m, opt, report), 0) + " points per view";
     } else {
-      if (opt.has("ours"))
-        scoreOurs(m, opt, settings, report);
-      scorePeers(m, opt, report);
-      scoreBaselines(m, opt, report);
+      scoreModel(m, opt, settings, report);
     }
     if (!opt.quiet)
       std::cout << "model " << id << " (" << m.category << ", " << m.n << " faces, "
@@ -313,9 +394,10 @@ void evaluate(const Options& opt) {
   }
   writeReports(opt, report);
   if (!opt.quiet)
-    std::cout << pcl_ncut_seg::eval::summary(report) << "Wrote "
+    std::cout << pcl_ncut_seg::eval::summary(report)
+              << (report.draws > 1 ? pcl_ncut_seg::eval::spreadSummary(report) : "") << "Wrote "
               << (fs::path(opt.out_dir) / "models.csv").string() << ", categories.csv, tables.md"
-              << std::endl;
+              << (report.draws > 1 ? ", spread.csv" : "") << std::endl;
 }
 
 } // namespace
