@@ -68,20 +68,36 @@ TEST(ShortCut, NeckIsTheBoundaryOverTheSmallerSidesSize) {
   EXPECT_EQ(measure.neck(side), 0.0);
 }
 
-TEST(ShortCut, KeepsThePrefixWithTheHighestSumOfWorths) {
+TEST(ShortCut, WorthWeighsTheNcutByTheNeck) {
   // worth = log(0.25 / max(ncut, 1e-3)) - 3 log(max(neck, 1)).
-  const std::vector<double> ncuts = {1e-5, 0.05, 0.05, 0.2};
-  EXPECT_EQ(shortCutKeep(ncuts, {1, 1, 1, 1}, 3.0, 0.25, 1e-3), 4u);
-  // A long boundary (neck 3) costs 3 log 3 = 3.3: the second split alone is not worth it,
-  // but the third makes up for it (sums 5.52, 3.83, 5.44, 5.66).
-  EXPECT_EQ(shortCutKeep(ncuts, {1, 3, 1, 1}, 3.0, 0.25, 1e-3), 4u);
-  // Two of them are not made up for (sums 5.52, 3.83, 2.14, 2.36).
-  EXPECT_EQ(shortCutKeep(ncuts, {1, 3, 3, 1}, 3.0, 0.25, 1e-3), 1u);
-  // Necks below 1 count as 1 (no bonus for a split of separate components, neck 0).
-  EXPECT_EQ(shortCutKeep(ncuts, {0, 0.1, 0.1, 0.1}, 3.0, 0.25, 1e-3), 4u);
-  // Nothing worth making.
-  EXPECT_EQ(shortCutKeep({0.5, 0.6}, {1, 1}, 3.0, 0.25, 1e-3), 0u);
-  EXPECT_EQ(shortCutKeep({}, {}, 3.0, 0.25, 1e-3), 0u);
+  EXPECT_NEAR(splitWorth(0.05, 1.0, 3.0, 0.25, 1e-3), std::log(5.0), 1e-12);
+  EXPECT_NEAR(splitWorth(0.05, 3.0, 3.0, 0.25, 1e-3), std::log(5.0) - 3 * std::log(3.0), 1e-12);
+  // NCuts below the floor count as the floor; necks below 1 (separate components) as 1.
+  EXPECT_NEAR(splitWorth(1e-9, 0.0, 3.0, 0.25, 1e-3), std::log(250.0), 1e-12);
+  EXPECT_LT(splitWorth(0.5, 1.0, 3.0, 0.25, 1e-3), 0.0);
+}
+
+TEST(ShortCut, KeepsTheSubtreeWithTheHighestSumOfWorths) {
+  // Node 0 splits into 1 and 2, node 1 into 3 and 4, node 2 into 5 and 6; 3-6 are leaves.
+  const std::vector<int> left = {1, 3, 5, -1, -1, -1, -1}, right = {2, 4, 6, -1, -1, -1, -1};
+  using Keep = std::vector<bool>;
+  auto keep = [&](std::vector<double> worth) {
+    worth.resize(7, 0.0);
+    return shortCutKeep(worth, left, right);
+  };
+  // Every split worth it: all kept.
+  EXPECT_EQ(keep({1, 1, 1}), (Keep{true, true, true, false, false, false, false}));
+  // A dear root is kept when the splits below it make up for it...
+  EXPECT_EQ(keep({-1.5, 1, 1}), (Keep{true, true, true, false, false, false, false}));
+  // ... and not otherwise; nothing below a dropped split is kept.
+  EXPECT_EQ(keep({-2.5, 1, 1}), Keep(7, false));
+  // A worthless split in one branch is dropped whatever the other branch is worth (a running
+  // sum over the best-first order would keep it when a worthy split came after it).
+  EXPECT_EQ(keep({1, -0.5, 2}), (Keep{true, false, true, false, false, false, false}));
+  // Nothing worth making; no split at all.
+  EXPECT_EQ(keep({-1, -1, -1}), Keep(7, false));
+  EXPECT_EQ(shortCutKeep({0.0}, {-1}, {-1}), Keep{false});
+  EXPECT_TRUE(shortCutKeep({}, {}, {}).empty());
 }
 
 TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {

@@ -215,6 +215,36 @@ std::vector<int> Hierarchy::leaves() const {
   return out;
 }
 
+namespace {
+/// The hierarchy with only the splits the short-cut rule keeps (shortCutKeep()); nodes keep
+/// their creation order (parents first).
+Hierarchy keptSplits(const Hierarchy& h, std::vector<double> worth) {
+  const std::size_t n = h.nodes.size();
+  worth.resize(n, 0.0);
+  std::vector<int> left(n), right(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    left[i] = h.nodes[i].left;
+    right[i] = h.nodes[i].right;
+  }
+  const std::vector<bool> keep = shortCutKeep(worth, left, right);
+  Hierarchy out;
+  std::vector<int> id(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int parent = h.nodes[i].parent;
+    if (parent >= 0 && !keep[parent])
+      continue; // below a dropped split (or the dropped split's children)
+    const int at = parent >= 0 ? id[parent] : -1;
+    id[i] = static_cast<int>(out.nodes.size());
+    out.nodes.push_back(h.nodes[i]);
+    out.nodes.back().parent = at;
+    out.nodes.back().left = out.nodes.back().right = -1;
+    if (at >= 0) // the left child is created first
+      (out.nodes[at].left < 0 ? out.nodes[at].left : out.nodes[at].right) = id[i];
+  }
+  return out;
+}
+} // namespace
+
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
                          const StoppingParams& params, const SplitNeckFn& split_neck) {
   Hierarchy h;
@@ -243,6 +273,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
   add(std::move(all), -1);
 
   // Best splits first: the leaf whose bisection has the lowest NCut (at most `cap`).
+  std::vector<double> worth; // short-cut rule: per node, its split's worth
   auto bestFirst = [&](int max_leaves, double cap, std::vector<double>* ncuts,
                        std::vector<double>* necks = nullptr) {
     for (int leaves = 1; leaves < max_leaves; ++leaves) {
@@ -255,8 +286,12 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
         break;
       if (ncuts)
         ncuts->push_back(h.nodes[best].ncut);
-      if (necks)
+      if (necks) {
         necks->push_back(split_neck(splits[best].v1, splits[best].v2));
+        worth.resize(h.nodes.size(), 0.0);
+        worth[best] = splitWorth(h.nodes[best].ncut, necks->back(), params.neck_exponent,
+                                 params.neck_bound, kNeckFloor);
+      }
       split(best);
     }
   };
@@ -267,6 +302,8 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
     const bool short_cut = params.rule == StoppingRule::ShortCut && split_neck;
     bestFirst(std::max(params.max_segments, 1), params.threshold, &ncuts,
               short_cut ? &necks : nullptr);
+    if (short_cut) // the short-cut rule instead of the largest jump (core/short_cut.h)
+      return keptSplits(h, worth);
     // Keep the first j splits, j >= 1, where the next split costs the most more than the
     // dearest kept one (log scale; NCuts below kFloor, e.g. separate components, count as
     // kFloor). The threshold stands for the split after the last one.
@@ -282,8 +319,6 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
         keep = j;
       }
     }
-    if (short_cut) // the short-cut rule instead of the largest jump (core/short_cut.h)
-      keep = shortCutKeep(ncuts, necks, params.neck_exponent, params.neck_bound, kNeckFloor);
     if (keep < ncuts.size()) {
       // Rebuild with exactly `keep` splits: the best-first order is deterministic.
       std::vector<std::uint32_t> root = std::move(h.nodes[0].vertices);

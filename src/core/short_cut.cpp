@@ -62,19 +62,26 @@ double NeckMeasure::neck(const std::vector<std::int8_t>& side) const {
   return 0.5 * (length[0] + length[1]) / std::sqrt(smaller);
 }
 
-std::size_t shortCutKeep(const std::vector<double>& ncuts, const std::vector<double>& necks,
-                         double exponent, double bound, double floor) {
-  std::size_t keep = 0;
-  double sum = 0.0, best = 0.0;
-  const double f = std::max(floor, 1e-300);
-  for (std::size_t j = 0; j < ncuts.size(); ++j) {
-    const double neck = j < necks.size() ? std::max(necks[j], 1.0) : 1.0;
-    sum += std::log(bound) - std::log(std::max(ncuts[j], f)) - exponent * std::log(neck);
-    if (sum > best) {
-      best = sum;
-      keep = j + 1;
+double splitWorth(double ncut, double neck, double exponent, double bound, double floor) {
+  return std::log(bound) - std::log(std::max(ncut, std::max(floor, 1e-300))) -
+         exponent * std::log(std::max(neck, 1.0));
+}
+
+std::vector<bool> shortCutKeep(const std::vector<double>& worth, const std::vector<int>& left,
+                               const std::vector<int>& right) {
+  const std::size_t n = left.size();
+  std::vector<double> value(n, 0.0);
+  for (std::size_t i = n; i-- > 0;)
+    if (left[i] >= 0)
+      value[i] = std::max(0.0, worth[i] + value[left[i]] + value[right[i]]);
+  std::vector<bool> keep(n, false);
+  for (std::size_t i = 0; i < n; ++i) // parents first: a split below a dropped one is dropped
+    keep[i] = left[i] >= 0 && value[i] > 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (left[i] >= 0 && !keep[i]) {
+      keep[left[i]] = false;
+      keep[right[i]] = false;
     }
-  }
   return keep;
 }
 

@@ -42,13 +42,25 @@ private:
   std::vector<std::uint32_t> border_offsets_, border_neighbours_;
 };
 
-/** \brief The short-cut rule over a best-first sequence of splits: the worth of split j is
- * log(bound / (max(ncut_j, floor) * max(neck_j, 1)^exponent)), and the first `keep` splits
- * are kept where the running sum of worths is highest (0 when no prefix has a positive sum).
- * A prefix rather than a threshold, so that splits that are not worth much by themselves
- * (separating an ant's body from its head) are kept when clearly worthwhile ones (its legs)
- * follow. */
-std::size_t shortCutKeep(const std::vector<double>& ncuts, const std::vector<double>& necks,
-                         double exponent, double bound, double floor);
+/** \brief The worth of a split under the short-cut rule:
+ * log(bound / (max(ncut, floor) * max(neck, 1)^exponent)); positive when the split is worth
+ * making by itself. */
+double splitWorth(double ncut, double neck, double exponent, double bound, double floor);
+
+/** \brief The short-cut rule over a tree of splits: which splits to keep.
+ *
+ * Node i of the tree (nodes in creation order: a child after its parent) is a split with
+ * children left[i] and right[i], or a leaf (left[i] < 0). A split's value is
+ * max(0, worth[i] + value(left[i]) + value(right[i])), a leaf's 0: a split is kept when it,
+ * together with the best of the splits below it, is worth making, and the kept splits form
+ * the subtree with the highest sum of worths. So a dear split (an ant's body from its head)
+ * is kept when worthwhile ones below it (its legs) make up for it, and no split is kept, or
+ * dropped, because of what happens in another branch.
+ *
+ * \param[in] worth  per node, its split's worth (splitWorth(); ignored for a leaf)
+ * \param[in] left, right  per node, its children, -1 for a leaf
+ * \return per node, whether its split is kept (false for a leaf and below a dropped split) */
+std::vector<bool> shortCutKeep(const std::vector<double>& worth, const std::vector<int>& left,
+                               const std::vector<int>& right);
 
 } // namespace pcl_ncut_seg
