@@ -222,6 +222,29 @@ TEST(EvalSampling, PermutedDrawsAreTheSamePointsInAnotherOrder) {
   EXPECT_EQ(second.nearest, first.nearest);
 }
 
+TEST(EvalSampling, JitteredDrawsAreTheSamePointsMovedByTheGivenSigma) {
+  SamplingOptions o;
+  o.samples = 3000;
+  o.draws = 3;
+  o.jitter = 0.01;
+  const TriangleMesh mesh = cube(); // area 6: spacing sqrt(6 / 3000)
+  const std::vector<float> centroids = faceCentroids(mesh);
+  const SampledCloud first = makeCloud(mesh, centroids, o, 4, 0);
+  const SampledCloud second = makeCloud(mesh, centroids, o, 4, 1);
+  const SampledCloud third = makeCloud(mesh, centroids, o, 4, 2);
+  EXPECT_TRUE(second.order.empty());
+  EXPECT_EQ(second.nearest, first.nearest);
+  EXPECT_NE(second.xyz, third.xyz);
+  std::vector<double> moved;
+  for (std::size_t i = 0; i < first.xyz.size(); ++i)
+    moved.push_back(second.xyz[i] - first.xyz[i]);
+  EXPECT_NEAR(stddev(moved), 0.01 * first.spacing, 0.01 * first.spacing * 0.05);
+  SamplingOptions plain = o;
+  plain.jitter = 0;
+  plain.draws = 1;
+  EXPECT_EQ(first.xyz, makeCloud(mesh, centroids, plain, 4, 0).xyz); // draw 1 as sampled
+}
+
 TEST(EvalSampling, DrawsAreSeededByModelAndDraw) {
   SamplingOptions o;
   o.samples = 500;

@@ -191,6 +191,12 @@ std::vector<Flag> samplingFlags() {
                  "the draws are one sample set in different orders: draw 1 as sampled, the "
                  "others in seeded random orders, labels mapped back (with -samples and -draws "
                  ">= 2)"),
+      realFlag("-jitter", "S",
+               "the draws are one sample set, draw 1 as sampled, each other moved by Gaussian "
+               "noise of sigma S mean spacings per coordinate: how much a change far below any "
+               "sensor's noise (1e-4: about a millionth of the model) changes the segments "
+               "(with -samples and -draws >= 2)",
+               "0", 0, 1e6),
   };
 }
 
@@ -206,12 +212,18 @@ SamplingOptions readSampling(const Flags& flags) {
   if (flags.has("-noise"))
     s.noise = flags.real("-noise");
   s.permute = flags.has("-permute");
+  if (flags.has("-jitter"))
+    s.jitter = flags.real("-jitter");
   if (!s.active())
-    for (const char* name : {"-draws", "-density_ratio", "-noise", "-permute"})
+    for (const char* name : {"-draws", "-density_ratio", "-noise", "-permute", "-jitter"})
       if (flags.has(name))
         throw Failure(std::string(name) + " needs -samples N (N > 0)");
   if (s.permute && s.draws < 2)
     throw Failure("-permute needs -draws 2 or more (draw 1 is the drawn order)");
+  if (s.jitter > 0 && s.draws < 2)
+    throw Failure("-jitter needs -draws 2 or more (draw 1 is the sample set as drawn)");
+  if (s.jitter > 0 && s.permute)
+    throw Failure("-jitter and -permute are separate conditions: give one");
   return s;
 }
 

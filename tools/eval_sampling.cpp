@@ -256,7 +256,7 @@ SampledCloud makeCloud(const TriangleMesh& mesh, const std::vector<float>& centr
     cloud.xyz = centroids;
     return cloud;
   }
-  const int sample_draw = options.permute ? 0 : draw;
+  const int sample_draw = options.permute || options.jitter > 0 ? 0 : draw;
   cloud.xyz = sampleWithGradient(mesh, options.samples, options.density_ratio,
                                  drawSeed(model_id, sample_draw, 0));
   if (cloud.xyz.empty())
@@ -265,6 +265,8 @@ SampledCloud makeCloud(const TriangleMesh& mesh, const std::vector<float>& centr
   cloud.spacing = meanSpacing(totalArea(mesh), options.samples);
   if (options.noise > 0)
     addNoise(cloud.xyz, options.noise * cloud.spacing, drawSeed(model_id, sample_draw, 1));
+  if (options.jitter > 0 && draw > 0)
+    addNoise(cloud.xyz, options.jitter * cloud.spacing, drawSeed(model_id, draw, 3));
   if (options.permute && draw > 0) {
     cloud.order = randomOrder(options.samples, drawSeed(model_id, draw, 2));
     cloud.xyz = reordered(cloud.xyz, cloud.order);

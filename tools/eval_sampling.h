@@ -16,13 +16,16 @@ namespace pcl_ncut_seg {
 namespace eval {
 
 /** \brief How each model's points are made (-samples, -draws, -density_ratio, -noise,
- * -permute). samples == 0: the face centroids, as without a condition. */
+ * -permute, -jitter). samples == 0: the face centroids, as without a condition. */
 struct SamplingOptions {
   std::size_t samples = 0;  ///< N points per draw; 0: one point per face centroid
   int draws = 1;            ///< draws per model, each seeded by (model id, draw)
   double density_ratio = 1; ///< R: density R at the low end of the longest axis, 1 at the high
   double noise = 0;         ///< Gaussian sigma per coordinate, in mean spacings sqrt(area / N)
   bool permute = false;     ///< one sample set in `draws` orders: draw 0 as drawn, others shuffled
+  /// One sample set in `draws` copies: draw 0 as drawn, each other moved by Gaussian noise of
+  /// sigma `jitter` mean spacings per coordinate (the segmenter's sensitivity to tiny changes)
+  double jitter = 0;
 
   bool active() const { return samples > 0; }
 };
