@@ -19,6 +19,7 @@
 #include "timing.h"
 
 #include <pcl/console/print.h>
+#include <pcl/search/organized.h>
 
 #include <algorithm>
 #include <cmath>
@@ -94,16 +95,24 @@ struct Seconds {
   double wall = 0, cpu = 0;
 };
 
-/** Ours with the defaults on the organized cloud; the segments through *segments. */
-Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::size_t* segments) {
+/** Ours with the defaults on the organized cloud (with `organized`: its neighbours from
+ * pcl::search::OrganizedNeighbor instead of the default kd-tree); the segments through
+ * *segments, the phases through *phases. */
+Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::size_t* segments,
+                 pcl_ncut_seg::PhaseTimes* phases = nullptr, bool organized = false) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(pcl_ncut_seg::toPclCloud(view));
   seg.setNumberOfThreads(threads);
+  if (organized)
+    seg.setSearchMethod(pcl::search::Search<pcl::PointXYZ>::Ptr(
+        new pcl::search::OrganizedNeighbor<pcl::PointXYZ>()));
   std::vector<pcl::PointIndices> out;
   const double start = now(), cpu = cpuNow();
   seg.extract(out);
   const Seconds secs{now() - start, cpuNow() - cpu};
   *segments = out.size();
+  if (phases)
+    *phases = seg.getPhaseTimes();
   return secs;
 }
 
@@ -135,14 +144,26 @@ Seconds timeLccp(const pcl_ncut_seg::DepthView& view, std::size_t* segments) {
   return secs;
 }
 
+/** Ours' phases on one thread (Table 1's columns), wall seconds. */
+void printPhases(const char* name, const pcl_ncut_seg::PhaseTimes& t, std::size_t segments) {
+  std::printf("  %-32s kNN %5.3f  Cen %5.3f  Snod %5.3f  LRef %5.3f  HSeg %5.3f  PSeg %5.3f  "
+              "(%zu segments)\n",
+              name, t.knn, t.centrality, t.supernodes, t.refinement, t.hierarchy, t.points,
+              segments);
+}
+
 void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
-  std::size_t ours_segments = 0, all_segments = 0, lccp_segments = 0;
-  const Seconds one = timeOurs(view, 1, &ours_segments);
+  std::size_t ours_segments = 0, all_segments = 0, lccp_segments = 0, grid_segments = 0;
+  pcl_ncut_seg::PhaseTimes phases, grid_phases;
+  const Seconds one = timeOurs(view, 1, &ours_segments, &phases);
   const Seconds all = timeOurs(view, 0, &all_segments);
   const Seconds lccp = timeLccp(view, &lccp_segments);
+  timeOurs(view, 1, &grid_segments, &grid_phases, true);
   std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name,
               view.validPixels(), one.wall, one.cpu, all.wall, cores, lccp.wall, lccp.cpu,
               ours_segments, lccp_segments);
+  printPhases("ours, 1 thread:", phases, ours_segments);
+  printPhases("ours, OrganizedNeighbor search:", grid_phases, grid_segments);
 }
 
 } // namespace
@@ -182,6 +203,8 @@ int main(int argc, char** argv) {
   measure("(b) bunny on a table, full frame", frame, cores);
   std::printf("Seconds, wall / CPU (ours on all n cores: wall). Ours with the defaults on the\n"
               "organized cloud; LCCP: PCL's normals, supervoxels (7.5 mm voxels, 3 cm seeds) and\n"
-              "LCCP on the valid points (one thread). Segments: distinct labels.\n");
+              "LCCP on the valid points (one thread). Segments: distinct labels. Below each\n"
+              "cloud, ours' phases on one thread (wall seconds), with the default kd-tree and\n"
+              "with pcl::search::OrganizedNeighbor given to setSearchMethod().\n");
   return 0;
 }

@@ -11,9 +11,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <random>
 #include <set>
+#include <tuple>
+#include <vector>
 
 using namespace pcl_ncut_seg;
 
@@ -146,4 +151,94 @@ TEST(BridgeGap, SetterRejectsBadValues) {
   }
   seg.setBridgeGap(0.0);
   EXPECT_EQ(seg.getBridgeGap(), 0.0);
+}
+
+namespace {
+/// Bridges by brute force over all pairs, by the rule bridgeComponents() documents: per pair
+/// of components the shortest pair of points p < q no longer than the reach (gap times kNN
+/// radius, the longest edge) of the smaller index's point or of the other's, taken shortest
+/// first while it joins two groups.
+std::set<std::pair<std::uint32_t, std::uint32_t>>
+bruteForceBridges(const CsrGraph& g, const std::vector<float>& xyz, double gap) {
+  const std::size_t n = g.numVertices();
+  std::vector<std::uint32_t> comp;
+  const std::size_t m = connectedComponents(g, comp);
+  std::vector<double> reach(n, 0.0);
+  for (std::uint32_t v = 0; v < n; ++v)
+    for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
+      reach[v] = std::max(reach[v], gap * g.lengths[e]);
+  std::map<std::pair<std::uint32_t, std::uint32_t>,
+           std::tuple<double, std::uint32_t, std::uint32_t>>
+      best;
+  for (std::uint32_t p = 0; p < n; ++p)
+    for (std::uint32_t q = p + 1; q < n; ++q) {
+      if (comp[p] == comp[q])
+        continue;
+      const double dx = xyz[3 * p] - xyz[3 * q], dy = xyz[3 * p + 1] - xyz[3 * q + 1],
+                   dz = xyz[3 * p + 2] - xyz[3 * q + 2];
+      const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (!(d <= std::max(reach[p], reach[q])))
+        continue;
+      const auto key = std::minmax(comp[p], comp[q]);
+      const auto c = std::make_tuple(d, p, q);
+      auto it = best.find(key);
+      if (it == best.end() || c < it->second)
+        best[key] = c;
+    }
+  std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> sorted;
+  for (const auto& [key, c] : best)
+    sorted.push_back(c);
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::uint32_t> parent(m);
+  for (std::uint32_t c = 0; c < m; ++c)
+    parent[c] = c;
+  auto find = [&parent](std::uint32_t c) {
+    while (parent[c] != c)
+      c = parent[c];
+    return c;
+  };
+  std::set<std::pair<std::uint32_t, std::uint32_t>> out;
+  for (const auto& [d, p, q] : sorted) {
+    const std::uint32_t a = find(comp[p]), b = find(comp[q]);
+    if (a != b) {
+      parent[a] = b;
+      out.emplace(p, q);
+    }
+  }
+  return out;
+}
+} // namespace
+
+TEST(BridgeComponents, MatchesAllPairsOnASheetWithSatellitesNearAndFar) {
+  // A large sheet (its cells hold only itself: the search skips them) with small clusters
+  // beside it at a range of gaps and a few far away, for several seeds.
+  for (unsigned seed : {1u, 2u, 3u}) {
+    std::vector<float> xyz;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> jitter(-0.15f, 0.15f), unit(0.0f, 1.0f);
+    for (int i = 0; i < 40; ++i)
+      for (int j = 0; j < 40; ++j)
+        xyz.insert(xyz.end(), {i + jitter(rng), j + jitter(rng), 0.0f});
+    for (int c = 0; c < 12; ++c) { // 3 x 3 clusters along the sheet's edge, 1 to 9 units off
+      const float cx = 40.0f + 0.75f * static_cast<float>(c), cy = 3.0f * static_cast<float>(c);
+      const float z = c % 3 == 0 ? 20.0f : 0.0f; // every third far above the plane
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          xyz.insert(xyz.end(), {cx + i + jitter(rng), cy + j + jitter(rng), z + unit(rng)});
+    }
+    const CsrGraph before = knnGraph(xyz, 6);
+    ASSERT_GT(components(before), 5u) << seed;
+    CsrGraph after = before;
+    bridgeComponents(after, xyz.data(), 3.0);
+    std::set<std::pair<std::uint32_t, std::uint32_t>> added;
+    for (std::uint32_t v = 0; v < after.numVertices(); ++v)
+      for (std::uint32_t e = after.offsets[v]; e < after.offsets[v + 1]; ++e) {
+        const std::uint32_t t = after.targets[e];
+        const auto* row = &before.targets[before.offsets[v]];
+        const auto* end = &before.targets[0] + before.offsets[v + 1];
+        if (v < t && !std::binary_search(row, end, t))
+          added.emplace(v, t);
+      }
+    EXPECT_EQ(added, bruteForceBridges(before, xyz, 3.0)) << seed;
+  }
 }

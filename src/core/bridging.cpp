@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -12,6 +13,7 @@
 namespace pcl_ncut_seg {
 
 namespace {
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max() - 1;
 double distance(const float* xyz, std::size_t a, std::size_t b) {
   const float* pa = xyz + 3 * a;
   const float* pb = xyz + 3 * b;
@@ -60,6 +62,49 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
   for (std::size_t v = 0; v < n; ++v)
     grid[key(coord(v, 0), coord(v, 1), coord(v, 2))].push_back(static_cast<std::uint32_t>(v));
+  // Most cells hold one component and lie among cells of that component only: a vertex there
+  // has no other component within one or two cells. Tag each cell with its component (kMixed
+  // if several) and whether the cells within one and two steps are all of that tag, so that
+  // such vertices skip the search (the result is the same, without the scan).
+  constexpr std::uint32_t kMixed = std::numeric_limits<std::uint32_t>::max();
+  std::unordered_map<std::uint64_t, std::uint32_t> tag;
+  for (const auto& [cell_key, points] : grid) {
+    std::uint32_t t = comp[points.front()];
+    const std::size_t f = points.front();
+    for (std::uint32_t q : points) // two cells under one key (a hash collision): mixed
+      if (comp[q] != t || coord(q, 0) != coord(f, 0) || coord(q, 1) != coord(f, 1) ||
+          coord(q, 2) != coord(f, 2))
+        t = kMixed;
+    tag.emplace(cell_key, t);
+  }
+  auto tagOf = [&tag](std::uint64_t k) {
+    const auto it = tag.find(k);
+    return it == tag.end() ? kNone : it->second; // kNone: empty
+  };
+  // Per cell of one component: 1 + the largest s <= 2 such that every cell within s steps is
+  // empty or of that component (0: none).
+  std::unordered_map<std::uint64_t, std::uint8_t> pure;
+  for (const auto& [cell_key, points] : grid) {
+    const std::uint32_t t = tag[cell_key];
+    if (t == kMixed)
+      continue;
+    const std::int64_t cx = coord(points.front(), 0), cy = coord(points.front(), 1),
+                       cz = coord(points.front(), 2);
+    std::uint8_t steps = 0;
+    for (std::int64_t sp = 1; sp <= 2; ++sp) {
+      bool ok = true;
+      for (std::int64_t x = cx - sp; x <= cx + sp && ok; ++x)
+        for (std::int64_t y = cy - sp; y <= cy + sp && ok; ++y)
+          for (std::int64_t z = cz - sp; z <= cz + sp && ok; ++z) {
+            const std::uint32_t u = tagOf(key(x, y, z));
+            ok = u == kNone || u == t;
+          }
+      if (!ok)
+        break;
+      steps = static_cast<std::uint8_t>(sp);
+    }
+    pure.emplace(cell_key, steps);
+  }
 
   // The shortest admissible pair per pair of components.
   using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>; // length, p, q (p < q)
@@ -91,13 +136,21 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
     }
     const auto s = static_cast<std::int64_t>(span);
     const std::int64_t cx = coord(p, 0), cy = coord(p, 1), cz = coord(p, 2);
+    const std::uint64_t own = key(cx, cy, cz);
+    if (tag[own] == comp[p]) {
+      const auto it = pure.find(own);
+      if (it != pure.end() && s <= it->second)
+        continue; // only p's own component within reach
+    }
     for (std::int64_t x = cx - s; x <= cx + s; ++x)
       for (std::int64_t y = cy - s; y <= cy + s; ++y)
         for (std::int64_t z = cz - s; z <= cz + s; ++z) {
-          const auto it = grid.find(key(x, y, z));
-          if (it != grid.end())
-            for (std::uint32_t q : it->second)
-              consider(p, q);
+          const std::uint64_t k = key(x, y, z);
+          const auto it = grid.find(k);
+          if (it == grid.end() || tag[k] == comp[p])
+            continue;
+          for (std::uint32_t q : it->second)
+            consider(p, q);
         }
   }
   std::vector<Candidate> candidates;
