@@ -13,7 +13,6 @@
 namespace pcl_ncut_seg {
 
 namespace {
-constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max() - 1;
 double distance(const float* xyz, std::size_t a, std::size_t b) {
   const float* pa = xyz + 3 * a;
   const float* pb = xyz + 3 * b;
@@ -59,51 +58,44 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
            (static_cast<std::uint64_t>(y) * 19349663u) ^
            (static_cast<std::uint64_t>(z) * 83492791u);
   };
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid;
-  for (std::size_t v = 0; v < n; ++v)
-    grid[key(coord(v, 0), coord(v, 1), coord(v, 2))].push_back(static_cast<std::uint32_t>(v));
   // Most cells hold one component and lie among cells of that component only: a vertex there
-  // has no other component within one or two cells. Tag each cell with its component (kMixed
-  // if several) and whether the cells within one and two steps are all of that tag, so that
-  // such vertices skip the search (the result is the same, without the scan).
+  // has no other component within one or two cells and skips the search, and no vertex reads
+  // the points of a cell of its own component (the result is the same, without the scan).
   constexpr std::uint32_t kMixed = std::numeric_limits<std::uint32_t>::max();
-  std::unordered_map<std::uint64_t, std::uint32_t> tag;
-  for (const auto& [cell_key, points] : grid) {
-    std::uint32_t t = comp[points.front()];
-    const std::size_t f = points.front();
-    for (std::uint32_t q : points) // two cells under one key (a hash collision): mixed
-      if (comp[q] != t || coord(q, 0) != coord(f, 0) || coord(q, 1) != coord(f, 1) ||
-          coord(q, 2) != coord(f, 2))
-        t = kMixed;
-    tag.emplace(cell_key, t);
-  }
-  auto tagOf = [&tag](std::uint64_t k) {
-    const auto it = tag.find(k);
-    return it == tag.end() ? kNone : it->second; // kNone: empty
+  struct Cell {
+    std::vector<std::uint32_t> points;
+    std::uint32_t component = kMixed; ///< of all its points, or kMixed
+    std::uint8_t pure_steps = 0;      ///< every cell within this many steps (<= 2): empty or same
   };
-  // Per cell of one component: 1 + the largest s <= 2 such that every cell within s steps is
-  // empty or of that component (0: none).
-  std::unordered_map<std::uint64_t, std::uint8_t> pure;
-  for (const auto& [cell_key, points] : grid) {
-    const std::uint32_t t = tag[cell_key];
-    if (t == kMixed)
+  std::unordered_map<std::uint64_t, Cell> grid;
+  for (std::size_t v = 0; v < n; ++v)
+    grid[key(coord(v, 0), coord(v, 1), coord(v, 2))].points.push_back(
+        static_cast<std::uint32_t>(v));
+  for (auto& [cell_key, c] : grid) {
+    const std::uint32_t f = c.points.front();
+    c.component = comp[f];
+    for (std::uint32_t q : c.points) // two cells under one key (a hash collision): mixed
+      if (comp[q] != comp[f] || coord(q, 0) != coord(f, 0) || coord(q, 1) != coord(f, 1) ||
+          coord(q, 2) != coord(f, 2))
+        c.component = kMixed;
+  }
+  for (auto& [cell_key, c] : grid) {
+    if (c.component == kMixed)
       continue;
-    const std::int64_t cx = coord(points.front(), 0), cy = coord(points.front(), 1),
-                       cz = coord(points.front(), 2);
-    std::uint8_t steps = 0;
+    const std::uint32_t f = c.points.front();
+    const std::int64_t cx = coord(f, 0), cy = coord(f, 1), cz = coord(f, 2);
     for (std::int64_t sp = 1; sp <= 2; ++sp) {
-      bool ok = true;
-      for (std::int64_t x = cx - sp; x <= cx + sp && ok; ++x)
-        for (std::int64_t y = cy - sp; y <= cy + sp && ok; ++y)
-          for (std::int64_t z = cz - sp; z <= cz + sp && ok; ++z) {
-            const std::uint32_t u = tagOf(key(x, y, z));
-            ok = u == kNone || u == t;
+      bool same = true;
+      for (std::int64_t x = cx - sp; x <= cx + sp && same; ++x)
+        for (std::int64_t y = cy - sp; y <= cy + sp && same; ++y)
+          for (std::int64_t z = cz - sp; z <= cz + sp && same; ++z) {
+            const auto it = grid.find(key(x, y, z));
+            same = it == grid.end() || it->second.component == c.component;
           }
-      if (!ok)
+      if (!same)
         break;
-      steps = static_cast<std::uint8_t>(sp);
+      c.pure_steps = static_cast<std::uint8_t>(sp);
     }
-    pure.emplace(cell_key, steps);
   }
 
   // The shortest admissible pair per pair of components.
@@ -129,27 +121,23 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
     const double span = std::ceil(reach[p] / cell);
     if (std::pow(2.0 * span + 1.0, 3) > static_cast<double>(grid.size())) {
       // A reach wider than the occupied grid: every occupied cell.
-      for (const auto& [cell_key, points] : grid)
-        for (std::uint32_t q : points)
+      for (const auto& [cell_key, c] : grid)
+        for (std::uint32_t q : c.points)
           consider(p, q);
       continue;
     }
     const auto s = static_cast<std::int64_t>(span);
     const std::int64_t cx = coord(p, 0), cy = coord(p, 1), cz = coord(p, 2);
-    const std::uint64_t own = key(cx, cy, cz);
-    if (tag[own] == comp[p]) {
-      const auto it = pure.find(own);
-      if (it != pure.end() && s <= it->second)
-        continue; // only p's own component within reach
-    }
+    const Cell& own = grid.find(key(cx, cy, cz))->second;
+    if (own.component == comp[p] && s <= own.pure_steps)
+      continue; // only p's own component within reach
     for (std::int64_t x = cx - s; x <= cx + s; ++x)
       for (std::int64_t y = cy - s; y <= cy + s; ++y)
         for (std::int64_t z = cz - s; z <= cz + s; ++z) {
-          const std::uint64_t k = key(x, y, z);
-          const auto it = grid.find(k);
-          if (it == grid.end() || tag[k] == comp[p])
+          const auto it = grid.find(key(x, y, z));
+          if (it == grid.end() || it->second.component == comp[p])
             continue;
-          for (std::uint32_t q : it->second)
+          for (std::uint32_t q : it->second.points)
             consider(p, q);
         }
   }

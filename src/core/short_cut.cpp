@@ -75,9 +75,9 @@ std::vector<bool> shortCutKeep(const std::vector<double>& worth, const std::vect
     if (left[i] >= 0)
       value[i] = std::max(0.0, worth[i] + value[left[i]] + value[right[i]]);
   std::vector<bool> keep(n, false);
-  for (std::size_t i = 0; i < n; ++i) // parents first: a split below a dropped one is dropped
-    keep[i] = left[i] >= 0 && value[i] > 0.0;
   for (std::size_t i = 0; i < n; ++i)
+    keep[i] = left[i] >= 0 && value[i] > 0.0;
+  for (std::size_t i = 0; i < n; ++i) // parents first: a split below a dropped one is dropped
     if (left[i] >= 0 && !keep[i]) {
       keep[left[i]] = false;
       keep[right[i]] = false;
