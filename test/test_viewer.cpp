@@ -80,6 +80,8 @@ protected:
     ASSERT_TRUE(fs::exists(kViewer)) << kViewer;
     dir_ = pcl_ncut_seg::test::makeTempDir("pcl_ncut_seg_viewer");
     ASSERT_FALSE(dir_.empty());
+    auth_dir_ = pcl_ncut_seg::test::makeTempDir("pcl_ncut_seg_xauth");
+    ASSERT_FALSE(auth_dir_.empty());
     // A hand with its fingers in one plane: seen from the front, every part is visible.
     shape_ = pcl_ncut_seg::test::makeHand(4000, 7);
     ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "hand.pcd").string(), *shape_.cloud), 0);
@@ -87,12 +89,16 @@ protected:
   void TearDown() override {
     std::error_code ec;
     fs::remove_all(dir_, ec);
+    fs::remove_all(auth_dir_, ec);
   }
 
-  /** Run the viewer in dir_ (under xvfb-run unless told otherwise). */
+  /** Run the viewer in dir_ (under xvfb-run unless told otherwise). xvfb-run gets its
+   * authority file from the test: with a directory of its own, its clean-up sometimes failed (exit
+   * 5, "problem while cleaning up temporary directory") after the viewer had exited. */
   ViewerRun run(const std::string& args, bool xvfb = true) const {
-    return pcl_ncut_seg::test::runCommand("cd '" + dir_.string() + "' && " +
-                                              (xvfb ? "xvfb-run -a " : "env -u DISPLAY ") + "'" +
+    const std::string prefix =
+        xvfb ? "xvfb-run -a -f '" + (auth_dir_ / "Xauthority").string() + "' " : "env -u DISPLAY ";
+    return pcl_ncut_seg::test::runCommand("cd '" + dir_.string() + "' && " + prefix + "'" +
                                               kViewer + "' " + args,
                                           dir_ / "stdout.txt", dir_ / "stderr.txt");
   }
@@ -127,6 +133,7 @@ protected:
   }
 
   fs::path dir_;
+  fs::path auth_dir_; ///< xvfb-run's authority file, outside dir_ (whose files are checked)
   pcl_ncut_seg::test::LabeledShape shape_;
 };
 
