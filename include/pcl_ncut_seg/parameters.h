@@ -66,6 +66,10 @@ struct GraphParams {
   /// Extension: join components of the graph that only a sampling gap separates, by their
   /// shortest point pair when it is at most this many kNN radii long. Off: the paper.
   std::optional<double> bridge_gap = 3.0;
+  /// Extension (core/denoise.h): when the residual growth of the points' local plane fits is
+  /// below this bound (noise, not curvature, scatters them), each point is projected onto the
+  /// plane of its 2-ring before anything is measured; nullopt: never. Not in CAD mode.
+  std::optional<double> denoise = 2.0;
 };
 
 /** \brief Sec. 4.1: the centrality f of eq. (1). */

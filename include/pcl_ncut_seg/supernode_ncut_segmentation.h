@@ -188,6 +188,12 @@ public:
   /** \param[in] radii  graph.bridge_gap, > 0; 0: off */
   void setBridgeGap(double radii);
   double getBridgeGap() const { return params_.graph.bridge_gap.value_or(0.0); }
+  /** \brief Sensor noise (core/denoise.h): a cloud whose local plane fits scatter less than
+   * growth times more over the 2-ring than over the 1-ring counts as noisy, and its points are
+   * projected onto their 2-ring's planes before anything is measured.
+   * \param[in] growth  graph.denoise, > 1; 0: off */
+  void setDenoise(double growth);
+  double getDenoise() const { return params_.graph.denoise.value_or(0.0); }
   /** \param[in] weight  similarity.concavity, > 0; 0: off */
   void setConcavityWeight(double weight);
   double getConcavityWeight() const { return params_.similarity.concavity.value_or(0.0); }

@@ -5,6 +5,7 @@
 #include <pcl_ncut_seg/core/coarse_centrality.h>
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/crease_split.h>
+#include <pcl_ncut_seg/core/denoise.h>
 #include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
 #include <pcl_ncut_seg/core/threads.h>
@@ -17,6 +18,18 @@ CsrGraph graphStage(const float* xyz, std::size_t n, const std::uint32_t* knn, s
   if (params.bridge_gap)
     bridgeComponents(graph, xyz, *params.bridge_gap);
   return graph;
+}
+
+bool denoiseStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size_t k,
+                  const GraphParams& params, unsigned num_threads, CsrGraph& graph) {
+  if (!params.denoise)
+    return false;
+  LocalPlanes planes = fitLocalPlanes(graph, xyz.data(), num_threads);
+  if (!isNoisy(planes, *params.denoise))
+    return false;
+  xyz.swap(planes.projected);
+  graph = graphStage(xyz.data(), xyz.size() / 3, knn, k, params, num_threads);
+  return true;
 }
 
 namespace {

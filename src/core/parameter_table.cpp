@@ -291,6 +291,13 @@ std::vector<ParameterInfo> makeTable() {
           "shortest point pair when it is at most G kNN radii long",
           false, {"bridge"}),
       above(0), FIELD(graph.bridge_gap), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("denoise", "graph.denoise", S::Graph, K::Real, "G",
+          "sensor noise: when the scatter of the points about their local planes grows less "
+          "than G times from the 1-ring to the 2-ring (noise, not curvature: about 1 against "
+          "4), project each point onto its 2-ring's plane first; not in CAD mode",
+          false),
+      above(1), FIELD(graph.denoise), "off"));
   // Centrality (Sec. 4.1)
   t.push_back(number<int, std::optional<int>>(
       row("centrality_samples", "centrality.samples", S::Centrality, K::Integer, "S",

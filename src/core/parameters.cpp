@@ -30,6 +30,7 @@ const char* stageName(Stage stage) {
 Parameters Parameters::paper() {
   Parameters p;
   p.graph.bridge_gap.reset();
+  p.graph.denoise.reset();
   p.centrality.mode = CentralityMode::Exact;
   p.refinement.crease_split.reset();
   p.refinement.crease_cut.reset();

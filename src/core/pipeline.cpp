@@ -58,6 +58,9 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   const std::size_t n = points.xyz.size() / 3;
   CsrGraph graph = graphStage(points.xyz.data(), n, points.knn.data(), points.k, params.graph,
                               params.execution.num_threads);
+  if (!params.cad.enabled) // CAD parts meet at sharp ridges, which the projection would round
+    denoiseStage(points.xyz, points.knn.data(), points.k, params.graph,
+                 params.execution.num_threads, graph);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
   const bool keep_xyz =

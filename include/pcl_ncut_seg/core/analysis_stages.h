@@ -15,6 +15,14 @@ namespace pcl_ncut_seg {
 CsrGraph graphStage(const float* xyz, std::size_t n, const std::uint32_t* knn, std::size_t k,
                     const GraphParams& params, unsigned num_threads);
 
+/** \brief Noise stage (extension, core/denoise.h): when graph.denoise is set and the cloud
+ * counts as noisy, projects xyz onto the points' 2-ring planes and rebuilds the graph from
+ * the same knn (graphStage). Returns whether it did.
+ * \param[in,out] xyz    3 floats per vertex
+ * \param[in,out] graph  graphStage() of xyz and knn */
+bool denoiseStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size_t k,
+                  const GraphParams& params, unsigned num_threads, CsrGraph& graph);
+
 /** \brief Secs. 4.1-4.3 on a graph: the centrality f (eq. 1), the supernodes of its gradient
  * flow (4.2), the radii r(p), local refinement (4.3), feature statistics and eq. (8).
  * Times go to times.centrality, .supernodes, .refinement.

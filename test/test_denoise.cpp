@@ -1,0 +1,121 @@
+/*
+ * Sensor noise, detected and projected away (core/denoise.h,
+ * SupernodeNCutSegmentation::setDenoise).
+ */
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/denoise.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/knn_graph.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <random>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// n points of the unit sphere on a Fibonacci lattice (spacing about sqrt(4 pi / n)), moved by
+/// Gaussian noise of sigma per coordinate.
+std::vector<float> sphere(std::size_t n, double sigma, std::uint64_t seed = 1) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::vector<float> xyz;
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), a = golden * i;
+    xyz.push_back(static_cast<float>(r * std::cos(a) + (sigma > 0 ? noise(rng) : 0.0)));
+    xyz.push_back(static_cast<float>(r * std::sin(a) + (sigma > 0 ? noise(rng) : 0.0)));
+    xyz.push_back(static_cast<float>(z + (sigma > 0 ? noise(rng) : 0.0)));
+  }
+  return xyz;
+}
+
+double rmsOffSphere(const std::vector<float>& xyz) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < xyz.size(); i += 3) {
+    const double r = std::sqrt(double(xyz[i]) * xyz[i] + double(xyz[i + 1]) * xyz[i + 1] +
+                               double(xyz[i + 2]) * xyz[i + 2]);
+    sum += (r - 1.0) * (r - 1.0);
+  }
+  return std::sqrt(sum / (xyz.size() / 3));
+}
+
+const std::size_t kN = 4000;
+const double kSpacing = std::sqrt(4.0 * kPi / kN);
+
+} // namespace
+
+TEST(Denoise, ACleanSphereIsCurvedNotNoisy) {
+  const std::vector<float> xyz = sphere(kN, 0.0);
+  const LocalPlanes planes = fitLocalPlanes(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
+  // Curvature: the scatter grows with the squared radius of the neighbourhood.
+  EXPECT_GT(planes.residual_growth, 3.0);
+  EXPECT_FALSE(isNoisy(planes, 2.0));
+}
+
+TEST(Denoise, NoiseIsDetectedAndProjectedTowardsTheSurface) {
+  for (double sigma : {0.25, 0.5, 1.0}) {
+    SCOPED_TRACE(sigma);
+    const std::vector<float> xyz = sphere(kN, sigma * kSpacing);
+    const LocalPlanes planes = fitLocalPlanes(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
+    EXPECT_LT(planes.residual_growth, 2.0);
+    EXPECT_TRUE(isNoisy(planes, 2.0));
+    ASSERT_EQ(planes.projected.size(), xyz.size());
+    std::cout << "sigma " << sigma << " spacings: off the sphere " << rmsOffSphere(xyz)
+              << " before, " << rmsOffSphere(planes.projected) << " after\n";
+    EXPECT_LT(rmsOffSphere(planes.projected), 0.7 * rmsOffSphere(xyz));
+  }
+}
+
+TEST(Denoise, AnExactlyFlatGridHasNoScatterAndStays) {
+  std::vector<float> xyz;
+  for (int i = 0; i < 50; ++i)
+    for (int j = 0; j < 50; ++j)
+      xyz.insert(xyz.end(), {0.1f * i, 0.1f * j, 0.5f});
+  const LocalPlanes planes = fitLocalPlanes(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
+  EXPECT_EQ(planes.residual_growth, 0.0);
+  EXPECT_FALSE(isNoisy(planes, 2.0));
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+    EXPECT_NEAR(planes.projected[i], xyz[i], 1e-5f);
+}
+
+TEST(Denoise, TheSameForAnyNumberOfThreads) {
+  const std::vector<float> xyz = sphere(kN, 0.5 * kSpacing);
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+  const LocalPlanes one = fitLocalPlanes(graph, xyz.data(), 1);
+  const LocalPlanes two = fitLocalPlanes(graph, xyz.data(), 2);
+  EXPECT_EQ(one.residual_growth, two.residual_growth);
+  EXPECT_EQ(one.projected, two.projected);
+}
+
+TEST(Denoise, CleanSurfacesGiveTheSameSegmentsWithAndWithout) {
+  using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
+  const test::LabeledShape hand = test::makeHand(4000, 7);
+  std::vector<pcl::PointIndices> with, without;
+  Segmenter seg;
+  EXPECT_EQ(seg.getDenoise(), 2.0); // the default
+  seg.setInputCloud(hand.cloud);
+  seg.extract(with);
+  seg.setDenoise(0.0);
+  EXPECT_EQ(seg.getDenoise(), 0.0);
+  seg.extract(without);
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t s = 0; s < with.size(); ++s)
+    EXPECT_EQ(with[s].indices, without[s].indices);
+}
+
+TEST(Denoise, SetterRejectsBadValues) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setDenoise(1.5);
+  for (double bad : {1.0, 0.5, -2.0, std::nan("")}) {
+    seg.setDenoise(bad);
+    EXPECT_EQ(seg.getDenoise(), 1.5);
+  }
+}
