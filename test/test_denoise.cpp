@@ -54,23 +54,25 @@ const double kSpacing = std::sqrt(4.0 * kPi / kN);
 
 TEST(Denoise, ACleanSphereIsCurvedNotNoisy) {
   const std::vector<float> xyz = sphere(kN, 0.0);
-  const LocalPlanes planes = fitLocalPlanes(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
+  const double growth = residualGrowth(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
   // Curvature: the scatter grows with the squared radius of the neighbourhood.
-  EXPECT_GT(planes.residual_growth, 3.0);
-  EXPECT_FALSE(isNoisy(planes, 2.0));
+  EXPECT_GT(growth, 3.0);
+  EXPECT_FALSE(isNoisy(growth, 2.0));
 }
 
 TEST(Denoise, NoiseIsDetectedAndProjectedTowardsTheSurface) {
   for (double sigma : {0.25, 0.5, 1.0}) {
     SCOPED_TRACE(sigma);
     const std::vector<float> xyz = sphere(kN, sigma * kSpacing);
-    const LocalPlanes planes = fitLocalPlanes(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
-    EXPECT_LT(planes.residual_growth, 2.0);
-    EXPECT_TRUE(isNoisy(planes, 2.0));
-    ASSERT_EQ(planes.projected.size(), xyz.size());
+    const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+    const double growth = residualGrowth(graph, xyz.data(), 2);
+    EXPECT_LT(growth, 2.0);
+    EXPECT_TRUE(isNoisy(growth, 2.0));
+    const std::vector<float> projected = projectOntoLocalPlanes(graph, xyz.data(), 2);
+    ASSERT_EQ(projected.size(), xyz.size());
     std::cout << "sigma " << sigma << " spacings: off the sphere " << rmsOffSphere(xyz)
-              << " before, " << rmsOffSphere(planes.projected) << " after\n";
-    EXPECT_LT(rmsOffSphere(planes.projected), 0.7 * rmsOffSphere(xyz));
+              << " before, " << rmsOffSphere(projected) << " after\n";
+    EXPECT_LT(rmsOffSphere(projected), 0.7 * rmsOffSphere(xyz));
   }
 }
 
@@ -79,20 +81,21 @@ TEST(Denoise, AnExactlyFlatGridHasNoScatterAndStays) {
   for (int i = 0; i < 50; ++i)
     for (int j = 0; j < 50; ++j)
       xyz.insert(xyz.end(), {0.1f * i, 0.1f * j, 0.5f});
-  const LocalPlanes planes = fitLocalPlanes(test::kdTreeKnnGraph(xyz, 10), xyz.data(), 2);
-  EXPECT_EQ(planes.residual_growth, 0.0);
-  EXPECT_FALSE(isNoisy(planes, 2.0));
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+  const double growth = residualGrowth(graph, xyz.data(), 2);
+  EXPECT_EQ(growth, 0.0);
+  EXPECT_FALSE(isNoisy(growth, 2.0));
+  const std::vector<float> projected = projectOntoLocalPlanes(graph, xyz.data(), 2);
   for (std::size_t i = 0; i < xyz.size(); ++i)
-    EXPECT_NEAR(planes.projected[i], xyz[i], 1e-5f);
+    EXPECT_NEAR(projected[i], xyz[i], 1e-5f);
 }
 
 TEST(Denoise, TheSameForAnyNumberOfThreads) {
   const std::vector<float> xyz = sphere(kN, 0.5 * kSpacing);
   const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
-  const LocalPlanes one = fitLocalPlanes(graph, xyz.data(), 1);
-  const LocalPlanes two = fitLocalPlanes(graph, xyz.data(), 2);
-  EXPECT_EQ(one.residual_growth, two.residual_growth);
-  EXPECT_EQ(one.projected, two.projected);
+  EXPECT_EQ(residualGrowth(graph, xyz.data(), 1), residualGrowth(graph, xyz.data(), 2));
+  EXPECT_EQ(projectOntoLocalPlanes(graph, xyz.data(), 1),
+            projectOntoLocalPlanes(graph, xyz.data(), 2));
 }
 
 TEST(Denoise, CleanSurfacesGiveTheSameSegmentsWithAndWithout) {
@@ -109,6 +112,39 @@ TEST(Denoise, CleanSurfacesGiveTheSameSegmentsWithAndWithout) {
   ASSERT_EQ(with.size(), without.size());
   for (std::size_t s = 0; s < with.size(); ++s)
     EXPECT_EQ(with[s].indices, without[s].indices);
+}
+
+TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
+  using Segmenter = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
+  const test::LabeledShape hand = test::makeHand(4000, 7);
+  Segmenter seg;
+  EXPECT_EQ(seg.getNoiseTest().residual_growth, 0.0); // nothing analysed yet
+  std::vector<pcl::PointIndices> segments;
+  seg.setInputCloud(hand.cloud);
+  seg.extract(segments);
+  EXPECT_GT(seg.getNoiseTest().residual_growth, 2.0);
+  EXPECT_FALSE(seg.getNoiseTest().projected);
+
+  // The same hand with noise of half a point spacing per coordinate.
+  pcl::PointCloud<pcl::PointXYZ>::Ptr noisy(new pcl::PointCloud<pcl::PointXYZ>(*hand.cloud));
+  std::mt19937_64 rng(3);
+  std::normal_distribution<float> noise(0.0f,
+                                        0.5f * static_cast<float>(test::meanPointSpacing(*noisy)));
+  for (auto& p : noisy->points) {
+    p.x += noise(rng);
+    p.y += noise(rng);
+    p.z += noise(rng);
+  }
+  seg.setInputCloud(noisy);
+  seg.extract(segments);
+  EXPECT_LT(seg.getNoiseTest().residual_growth, 2.0);
+  EXPECT_TRUE(seg.getNoiseTest().projected);
+  EXPECT_FALSE(segments.empty());
+
+  seg.setDenoise(0.0); // off: not measured
+  seg.extract(segments);
+  EXPECT_EQ(seg.getNoiseTest().residual_growth, 0.0);
+  EXPECT_FALSE(seg.getNoiseTest().projected);
 }
 
 TEST(Denoise, SetterRejectsBadValues) {

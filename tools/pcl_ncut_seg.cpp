@@ -321,6 +321,13 @@ void printReport(const Segmenter& seg, std::size_t num_segments) {
     value("%zu", count.count);
     info(" %s\n", count.what);
   }
+  const pcl_ncut_seg::NoiseTest noise = seg.getNoiseTest();
+  if (noise.residual_growth > 0.0) {
+    info("noise: residual growth ");
+    value("%.2f", noise.residual_growth);
+    info(noise.projected ? " (noisy: points projected onto their local planes)\n"
+                         : " (no projection)\n");
+  }
   info("mem  : ");
   value("%.1f", static_cast<double>(peakMemoryBytes()) / (1024.0 * 1024.0));
   info(" MiB peak resident memory\n");

@@ -261,6 +261,10 @@ public:
   /** \brief Number of supernodes before (m) or after (l) refinement.
    * \param[in] refined  after (true) or before (false) the local refinement */
   std::size_t getNumberOfSupernodes(bool refined) const;
+  /** \brief The last analysis' noise test (setDenoise): the residual growth of the points'
+   * local plane fits (about 1 for noise, 4 for curvature; 0 when not measured: denoise off,
+   * CAD mode or no analysis yet) and whether the points were projected onto their planes. */
+  pcl_ncut_seg::NoiseTest getNoiseTest() const;
   /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2). */
   const pcl_ncut_seg::Hierarchy& getHierarchy() const { return result_.hierarchy; }
   /** \brief The supernode graph G_s (Sec. 5.1). */

@@ -12,24 +12,26 @@
 
 namespace pcl_ncut_seg {
 
-CsrGraph graphStage(const float* xyz, std::size_t n, const std::uint32_t* knn, std::size_t k,
-                    const GraphParams& params, unsigned num_threads) {
-  CsrGraph graph = buildSymmetricKnnGraph(xyz, n, knn, k, usableThreads(num_threads));
+CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size_t k,
+                    const GraphParams& params, bool may_denoise, unsigned num_threads,
+                    NoiseTest* noise) {
+  const std::size_t n = xyz.size() / 3;
+  const int threads = usableThreads(num_threads);
+  CsrGraph graph = buildSymmetricKnnGraph(xyz.data(), n, knn, k, threads);
+  NoiseTest test;
+  if (may_denoise && params.denoise) {
+    test.residual_growth = residualGrowth(graph, xyz.data(), num_threads);
+    test.projected = isNoisy(test.residual_growth, *params.denoise);
+  }
+  if (test.projected) {
+    xyz = projectOntoLocalPlanes(graph, xyz.data(), num_threads);
+    graph = buildSymmetricKnnGraph(xyz.data(), n, knn, k, threads); // the same kNN, new lengths
+  }
+  if (noise)
+    *noise = test;
   if (params.bridge_gap)
-    bridgeComponents(graph, xyz, *params.bridge_gap);
+    bridgeComponents(graph, xyz.data(), *params.bridge_gap);
   return graph;
-}
-
-bool denoiseStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size_t k,
-                  const GraphParams& params, unsigned num_threads, CsrGraph& graph) {
-  if (!params.denoise)
-    return false;
-  LocalPlanes planes = fitLocalPlanes(graph, xyz.data(), num_threads);
-  if (!isNoisy(planes, *params.denoise))
-    return false;
-  xyz.swap(planes.projected);
-  graph = graphStage(xyz.data(), xyz.size() / 3, knn, k, params, num_threads);
-  return true;
 }
 
 namespace {

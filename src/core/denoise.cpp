@@ -41,57 +41,87 @@ bool fitPlane(const float* xyz, const std::vector<std::uint32_t>& members,
   return true;
 }
 
+/// The 1-ring (first) and 2-ring of vertex p, without repeats; stamp marks what is in.
+class Rings {
+public:
+  explicit Rings(std::size_t n) : stamp_(n, 0) {}
+  void collect(const CsrGraph& graph, std::uint32_t p) {
+    ++tick_;
+    ring1_.assign(1, p);
+    stamp_[p] = tick_;
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      add(graph.targets[e], ring1_);
+    ring2_ = ring1_;
+    for (std::size_t i = 1; i < ring1_.size(); ++i)
+      for (std::uint32_t e = graph.offsets[ring1_[i]]; e < graph.offsets[ring1_[i] + 1]; ++e)
+        add(graph.targets[e], ring2_);
+  }
+  const std::vector<std::uint32_t>& ring1() const { return ring1_; }
+  const std::vector<std::uint32_t>& ring2() const { return ring2_; }
+
+private:
+  void add(std::uint32_t v, std::vector<std::uint32_t>& ring) {
+    if (stamp_[v] != tick_) {
+      stamp_[v] = tick_;
+      ring.push_back(v);
+    }
+  }
+  std::vector<std::uint32_t> stamp_, ring1_, ring2_;
+  std::uint32_t tick_ = 0;
+};
+
 } // namespace
 
-LocalPlanes fitLocalPlanes(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
-  const std::size_t n = graph.numVertices();
-  LocalPlanes out;
-  out.projected.assign(xyz, xyz + 3 * n);
-  std::vector<double> rms1(n, 0.0), rms2(n, 0.0);
-  const auto sn = static_cast<std::int64_t>(n);
+double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
+  constexpr std::size_t kStride = 4;
+  const std::size_t m = (graph.numVertices() + kStride - 1) / kStride;
+  std::vector<double> rms1(m, 0.0), rms2(m, 0.0);
+  const auto sm = static_cast<std::int64_t>(m);
 #pragma omp parallel num_threads(usableThreads(num_threads))
   {
-    std::vector<std::uint32_t> stamp(n, 0), ring1, ring2;
-    std::uint32_t tick = 0;
-#pragma omp for schedule(static, 1024)
-    for (std::int64_t sp = 0; sp < sn; ++sp) {
-      const auto p = static_cast<std::uint32_t>(sp);
-      ++tick;
-      ring1.assign(1, p);
-      stamp[p] = tick;
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-        if (stamp[graph.targets[e]] != tick) {
-          stamp[graph.targets[e]] = tick;
-          ring1.push_back(graph.targets[e]);
-        }
-      ring2 = ring1;
-      for (std::size_t i = 1; i < ring1.size(); ++i)
-        for (std::uint32_t e = graph.offsets[ring1[i]]; e < graph.offsets[ring1[i] + 1]; ++e)
-          if (stamp[graph.targets[e]] != tick) {
-            stamp[graph.targets[e]] = tick;
-            ring2.push_back(graph.targets[e]);
-          }
-      Eigen::Vector3d c1, n1, c2, n2;
-      double r1 = 0.0, r2 = 0.0;
-      if (!fitPlane(xyz, ring2, c2, n2, r2))
-        continue;
-      const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
-      const Eigen::Vector3d y = x - (x - c2).dot(n2) * n2;
-      for (int d = 0; d < 3; ++d)
-        out.projected[3 * p + d] = static_cast<float>(y[d]);
-      if (fitPlane(xyz, ring1, c1, n1, r1)) { // both fits, or the point does not count
-        rms1[p] = r1;
-        rms2[p] = r2;
+    Rings rings(graph.numVertices());
+    Eigen::Vector3d centroid, normal;
+    double r1 = 0.0, r2 = 0.0;
+#pragma omp for schedule(static, 256)
+    for (std::int64_t i = 0; i < sm; ++i) {
+      rings.collect(graph, static_cast<std::uint32_t>(i * kStride));
+      if (fitPlane(xyz, rings.ring1(), centroid, normal, r1) &&
+          fitPlane(xyz, rings.ring2(), centroid, normal, r2)) {
+        rms1[i] = r1;
+        rms2[i] = r2;
       }
     }
   }
-  // Summed in vertex order: the same for any number of threads.
-  double sum1 = 0.0, sum2 = 0.0;
-  for (std::size_t p = 0; p < n; ++p) {
-    sum1 += rms1[p];
-    sum2 += rms2[p];
+  double sum1 = 0.0, sum2 = 0.0; // in vertex order: the same for any number of threads
+  for (std::size_t i = 0; i < m; ++i) {
+    sum1 += rms1[i];
+    sum2 += rms2[i];
   }
-  out.residual_growth = sum1 > 0.0 ? sum2 / sum1 : 0.0;
+  return sum1 > 0.0 ? sum2 / sum1 : 0.0;
+}
+
+std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
+                                          unsigned num_threads) {
+  const std::size_t n = graph.numVertices();
+  std::vector<float> out(xyz, xyz + 3 * n);
+  const auto sn = static_cast<std::int64_t>(n);
+#pragma omp parallel num_threads(usableThreads(num_threads))
+  {
+    Rings rings(n);
+    Eigen::Vector3d centroid, normal;
+    double rms = 0.0;
+#pragma omp for schedule(static, 1024)
+    for (std::int64_t sp = 0; sp < sn; ++sp) {
+      const auto p = static_cast<std::uint32_t>(sp);
+      rings.collect(graph, p);
+      if (!fitPlane(xyz, rings.ring2(), centroid, normal, rms))
+        continue;
+      const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+      const Eigen::Vector3d y = x - (x - centroid).dot(normal) * normal;
+      for (int d = 0; d < 3; ++d)
+        out[3 * p + d] = static_cast<float>(y[d]);
+    }
+  }
   return out;
 }
 

@@ -56,11 +56,10 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                  const PhaseProgressFn& progress) {
   Stopwatch clock;
   const std::size_t n = points.xyz.size() / 3;
-  CsrGraph graph = graphStage(points.xyz.data(), n, points.knn.data(), points.k, params.graph,
-                              params.execution.num_threads);
-  if (!params.cad.enabled) // CAD parts meet at sharp ridges, which the projection would round
-    denoiseStage(points.xyz, points.knn.data(), points.k, params.graph,
-                 params.execution.num_threads, graph);
+  NoiseTest noise;
+  // CAD parts meet at sharp ridges, which projecting the points onto planes would round.
+  CsrGraph graph = graphStage(points.xyz, points.knn.data(), points.k, params.graph,
+                              !params.cad.enabled, params.execution.num_threads, &noise);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
   const bool keep_xyz =
@@ -83,6 +82,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     a = surfaceAnalysis(points.xyz, std::move(graph), params, rank, times, progress);
   }
   a.order = std::move(points.order);
+  a.noise = noise;
   return a;
 }
 

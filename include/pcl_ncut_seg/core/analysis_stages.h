@@ -4,24 +4,21 @@
  */
 #pragma once
 
+#include <pcl_ncut_seg/core/denoise.h>
 #include <pcl_ncut_seg/core/pipeline.h>
 
 namespace pcl_ncut_seg {
 
-/** \brief Graph stage (Sec. 4.1): the symmetric kNN graph with Euclidean lengths, and
+/** \brief Graph stage (Sec. 4.1): the symmetric kNN graph with Euclidean lengths; when
+ * graph.denoise is set, may_denoise holds and the cloud counts as noisy (core/denoise.h), the
+ * points projected onto their local planes and the graph's lengths measured again; then
  * bridges across sampling gaps between its components (graph.bridge_gap).
- * \param[in] xyz  3 floats per vertex
- * \param[in] knn  k per vertex (kNone pads a row) */
-CsrGraph graphStage(const float* xyz, std::size_t n, const std::uint32_t* knn, std::size_t k,
-                    const GraphParams& params, unsigned num_threads);
-
-/** \brief Noise stage (extension, core/denoise.h): when graph.denoise is set and the cloud
- * counts as noisy, projects xyz onto the points' 2-ring planes and rebuilds the graph from
- * the same knn (graphStage). Returns whether it did.
- * \param[in,out] xyz    3 floats per vertex
- * \param[in,out] graph  graphStage() of xyz and knn */
-bool denoiseStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size_t k,
-                  const GraphParams& params, unsigned num_threads, CsrGraph& graph);
+ * \param[in,out] xyz  3 floats per vertex; projected when the cloud was noisy
+ * \param[in] knn      k per vertex (kNone pads a row)
+ * \param[out] noise   when given, the noise test's outcome */
+CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size_t k,
+                    const GraphParams& params, bool may_denoise, unsigned num_threads,
+                    NoiseTest* noise = nullptr);
 
 /** \brief Secs. 4.1-4.3 on a graph: the centrality f (eq. 1), the supernodes of its gradient
  * flow (4.2), the radii r(p), local refinement (4.3), feature statistics and eq. (8).

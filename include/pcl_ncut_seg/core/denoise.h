@@ -14,29 +14,34 @@
 
 namespace pcl_ncut_seg {
 
-/** \brief Least-squares planes of each point's 1-ring (the point and its graph neighbours) and
- * 2-ring (with the neighbours' neighbours). */
-struct LocalPlanes {
-  /// Residual growth: the sum over points of the RMS distance to their 2-ring's plane over the
-  /// same sum for their 1-ring's. About 4 where curvature makes the scatter (it grows with the
-  /// squared radius, and the 2-ring reaches about twice as far), about 1 where noise makes it;
-  /// 0 when no point has a plane (a cloud without neighbourhoods, or exactly flat).
-  double residual_growth = 0.0;
-  /// Per vertex, 3 floats: the vertex projected onto its 2-ring's plane (the vertex itself
-  /// where the 2-ring has no plane: fewer than 3 points, collinear or coincident).
-  std::vector<float> projected;
-};
-
-/** \brief Fits the planes of every vertex's 1-ring and 2-ring.
+/** \brief Residual growth: over every 4th vertex (in vertex order; a mean needs no more), the
+ * sum of the RMS distances to the least-squares planes of their 2-rings (the vertex, its graph
+ * neighbours and theirs) over the same sum for their 1-rings (the vertex and its neighbours).
+ * About 4 where curvature makes the scatter (it grows with the squared radius, and the 2-ring
+ * reaches about twice as far), about 1 where noise makes it; 0 when no vertex has both planes
+ * or there is no scatter (an exactly flat cloud).
  * \param[in] graph        the symmetric kNN graph
  * \param[in] xyz          3 floats per vertex
  * \param[in] num_threads  0 = all cores; the result does not depend on it */
-LocalPlanes fitLocalPlanes(const CsrGraph& graph, const float* xyz, unsigned num_threads = 0);
+double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads = 0);
 
-/** \brief Whether a cloud counts as noisy: residual growth below the bound (2: halfway between
- * noise's 1 and curvature's 4 on a log scale), with at least one plane fitted. */
-inline bool isNoisy(const LocalPlanes& planes, double growth_bound) {
-  return planes.residual_growth > 0.0 && planes.residual_growth < growth_bound;
+/** \brief What the graph stage found out about noise. */
+struct NoiseTest {
+  double residual_growth = 0.0; ///< residualGrowth(); 0 when it was not measured
+  bool projected = false;       ///< the points were projected onto their local planes
+};
+
+/** \brief Whether a cloud counts as noisy: a residual growth below the bound (2: halfway
+ * between noise's 1 and curvature's 4 on a log scale) and above 0. */
+inline bool isNoisy(double residual_growth, double growth_bound) {
+  return residual_growth > 0.0 && residual_growth < growth_bound;
 }
+
+/** \brief Each vertex projected onto the least-squares plane of its 2-ring: 3 floats per
+ * vertex (the vertex itself where the 2-ring has no plane: fewer than 3 points, collinear or
+ * coincident).
+ * \param[in] num_threads  0 = all cores; the result does not depend on it */
+std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
+                                          unsigned num_threads = 0);
 
 } // namespace pcl_ncut_seg

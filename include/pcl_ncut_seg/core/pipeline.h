@@ -13,6 +13,7 @@
 
 #include <pcl_ncut_seg/core/centrality.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/denoise.h>
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
 #include <pcl_ncut_seg/core/supernodes.h>
@@ -71,6 +72,7 @@ struct Analysis {
   std::vector<std::uint8_t> crease;
   bool has_crease = false;
   std::vector<std::uint32_t> order; ///< PointSet::order
+  NoiseTest noise;                  ///< the graph stage's noise test (core/denoise.h)
 };
 
 /** \brief What the cut stages need the analysis to have measured. */

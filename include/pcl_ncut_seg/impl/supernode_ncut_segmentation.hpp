@@ -401,5 +401,10 @@ std::size_t pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSupernodes(bool r
   return refined ? analysis_->supernodes.size() : analysis_->raw_supernodes.size();
 }
 
+template <typename PointT>
+pcl_ncut_seg::NoiseTest pcl::SupernodeNCutSegmentation<PointT>::getNoiseTest() const {
+  return analysis_ ? analysis_->noise : pcl_ncut_seg::NoiseTest{};
+}
+
 #define PCL_INSTANTIATE_SupernodeNCutSegmentation(T)                                               \
   template class PCL_EXPORTS pcl::SupernodeNCutSegmentation<T>;
