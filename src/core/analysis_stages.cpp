@@ -25,7 +25,7 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
   }
   if (test.projected) {
     xyz = projectOntoLocalPlanes(graph, xyz.data(), num_threads);
-    graph = buildSymmetricKnnGraph(xyz.data(), n, knn, k, threads); // the same kNN, new lengths
+    measureLengths(graph, xyz.data()); // the same graph, its lengths between the moved points
   }
   if (noise)
     *noise = test;
