@@ -162,6 +162,11 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
       .def_property_readonly(
           "num_refined_supernodes", [](const Segmenter& s) { return s.numSupernodes(true); },
           "l: supernodes after local refinement.")
+      .def_property_readonly("noise_test", &Segmenter::noiseTest,
+                             "The last analysis' noise test (the denoise parameter): "
+                             "residual_growth of the local plane fits (about 1 for noise, 4 "
+                             "for curvature; 0 when not measured) and whether the points were "
+                             "projected onto their local planes.")
       .def_property_readonly("phase_times", &Segmenter::phaseTimes,
                              "Seconds per phase of the last segment() (knn, centrality, "
                              "supernodes, refinement, hierarchy, points, total); the analysis "

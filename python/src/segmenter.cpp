@@ -266,6 +266,15 @@ std::size_t Segmenter::numSupernodes(bool refined) const {
   return seg_.getNumberOfSupernodes(refined);
 }
 
+py::dict Segmenter::noiseTest() const {
+  requireResult();
+  const pcl_ncut_seg::NoiseTest test = seg_.getNoiseTest();
+  py::dict d;
+  d["residual_growth"] = test.residual_growth;
+  d["projected"] = test.projected;
+  return d;
+}
+
 py::dict Segmenter::phaseTimes() const {
   requireResult();
   py::dict d;

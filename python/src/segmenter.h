@@ -53,6 +53,8 @@ public:
   py::dict supernodeGraph() const;
   std::size_t numSegments() const;
   std::size_t numSupernodes(bool refined) const;
+  /** \brief The last analysis' noise test: residual_growth and projected (core/denoise.h). */
+  py::dict noiseTest() const;
 
   /** \brief Seconds per phase of the last segment() (Table 1's columns); the analysis phases
    * are 0 when that call reused the kept analysis. */

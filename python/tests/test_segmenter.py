@@ -131,3 +131,23 @@ def test_which_parameters_recompute_the_analysis(points):
         seg.set(**{row["name"]: OTHER[row["name"]]})
         seg.segment()
         assert seg.analysis_count == (2 if row["analysis"] else 1), row["name"]
+
+
+def test_the_noise_test_is_reported(points):
+    clean = pcl_ncut_seg.Segmenter()
+    clean.segment(points)
+    assert clean.noise_test["residual_growth"] > 2.0
+    assert clean.noise_test["projected"] is False
+    # Noise of half a point spacing per coordinate (spacing from the nearest neighbours).
+    rng = np.random.default_rng(5)
+    sample = points[rng.choice(len(points), 300, replace=False)]
+    d2 = ((sample[:, None, :] - points[None, :, :]) ** 2).sum(-1)
+    d2[d2 == 0] = np.inf
+    spacing = float(np.sqrt(d2.min(1)).mean())
+    noisy = pcl_ncut_seg.Segmenter()
+    noisy.segment(points + rng.normal(0.0, 0.5 * spacing, points.shape))
+    assert noisy.noise_test["residual_growth"] < 2.0
+    assert noisy.noise_test["projected"] is True
+    off = pcl_ncut_seg.Segmenter(denoise=None)
+    off.segment(points)
+    assert off.noise_test == {"residual_growth": 0.0, "projected": False}
