@@ -161,4 +161,10 @@ std::size_t connectedComponents(const CsrGraph& graph, std::vector<std::uint32_t
   return count;
 }
 
+void measureLengths(CsrGraph& graph, const float* xyz) {
+  for (std::size_t v = 0; v < graph.numVertices(); ++v)
+    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
+      graph.lengths[e] = distance(xyz, v, graph.targets[e]);
+}
+
 } // namespace pcl_ncut_seg

@@ -125,14 +125,4 @@ std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xy
   return out;
 }
 
-void measureLengths(CsrGraph& graph, const float* xyz) {
-  for (std::size_t p = 0; p < graph.numVertices(); ++p)
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const float* a = &xyz[3 * p];
-      const float* b = &xyz[3 * graph.targets[e]];
-      const float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-      graph.lengths[e] = std::sqrt(dx * dx + dy * dy + dz * dz);
-    }
-}
-
 } // namespace pcl_ncut_seg

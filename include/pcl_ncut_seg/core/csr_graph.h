@@ -39,6 +39,10 @@ struct CsrGraph {
 CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
                                 std::size_t k, int num_threads = 1);
 
+/** \brief Sets every edge's length to the Euclidean distance between its ends in xyz, as
+ * buildSymmetricKnnGraph() does (after the points moved; the edges stay). */
+void measureLengths(CsrGraph& graph, const float* xyz);
+
 /** \brief Connected components of a graph.
  * \param[out] component  per vertex, its component id; ids are numbered in order of each
  *                        component's smallest vertex

@@ -44,7 +44,4 @@ inline bool isNoisy(double residual_growth, double growth_bound) {
 std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
                                           unsigned num_threads = 0);
 
-/** \brief Sets every edge's length to the Euclidean distance between its ends in xyz. */
-void measureLengths(CsrGraph& graph, const float* xyz);
-
 } // namespace pcl_ncut_seg
