@@ -16,7 +16,8 @@ namespace pcl_ncut_seg {
 CutNeeds cutNeeds(const Parameters& params) {
   CutNeeds needs;
   needs.concavity = !params.cad.enabled && params.similarity.concavity.has_value();
-  needs.crease = !params.cad.enabled && params.boundary.band.has_value();
+  needs.crease = !params.cad.enabled &&
+                 (params.boundary.band.has_value() || params.boundary.rim_merge.has_value());
   return needs;
 }
 
@@ -83,6 +84,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   }
   a.order = std::move(points.order);
   a.noise = noise;
+  a.rim = std::move(points.rim);
   return a;
 }
 
@@ -94,6 +96,7 @@ CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& ti
   times.hierarchy = clock.lap();
   labelPoints(analysis, r);
   boundaryStage(analysis, params.boundary, r);
+  rimStage(analysis, params.boundary, r);
   numberSegments(analysis.order, r);
   times.points = clock.lap();
   return r;

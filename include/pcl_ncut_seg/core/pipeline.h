@@ -49,6 +49,9 @@ struct PointSet {
   /// and segments are numbered by their first vertex in it. Empty: the vertex order.
   std::vector<std::uint32_t> order;
   NormalSource normals; ///< CAD mode; empty: CAD mode fails (no normals)
+  /// Per vertex, 1 where an open view of the surface ends (core/rim_merge.h); empty: a
+  /// surface without a known rim.
+  std::vector<std::uint8_t> rim;
 };
 
 /** \brief The expensive stage: everything that depends only on the points and the analysis
@@ -73,6 +76,7 @@ struct Analysis {
   bool has_crease = false;
   std::vector<std::uint32_t> order; ///< PointSet::order
   NoiseTest noise;                  ///< the graph stage's noise test (core/denoise.h)
+  std::vector<std::uint8_t> rim;    ///< PointSet::rim
 };
 
 /** \brief What the cut stages need the analysis to have measured. */
