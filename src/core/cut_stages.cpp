@@ -68,10 +68,10 @@ void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r
 }
 
 void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
-  if (a.cad || !params.rim_merge || a.rim.empty() || !a.has_crease)
+  if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_crease.empty())
     return;
-  const std::vector<std::uint32_t> map =
-      mergeAcrossRim(a.graph, a.rim, a.crease, *params.rim_merge, r.point_segment, r.num_segments);
+  const std::vector<std::uint32_t> map = mergeAcrossRim(
+      a.graph, a.rim, a.rim_crease, *params.rim_merge, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];

@@ -497,9 +497,9 @@ std::vector<ParameterInfo> makeTable() {
   t.push_back(number<double, std::optional<double>>(
       row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "C",
           "open views (an organized cloud, or one view from the sensor origin): merge two "
-          "touching segments, one reaching the view's rim, when their boundary's mean concave "
-          "bend is below C mean bends per kNN edge and its neck is at least sqrt(pi) (no "
-          "limb's); not in CAD mode",
+          "touching segments, one reaching the view's rim, when their boundary bends concavely "
+          "less than C mean bends per kNN edge on average (of normals averaged over the "
+          "3-ring) and its neck is at least sqrt(pi) (no limb's); not in CAD mode",
           false),
       above(0), FIELD(boundary.rim_merge), "off"));
   // Execution

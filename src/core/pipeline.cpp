@@ -16,15 +16,15 @@ namespace pcl_ncut_seg {
 CutNeeds cutNeeds(const Parameters& params) {
   CutNeeds needs;
   needs.concavity = !params.cad.enabled && params.similarity.concavity.has_value();
-  needs.crease = !params.cad.enabled &&
-                 (params.boundary.band.has_value() || params.boundary.rim_merge.has_value());
+  needs.crease = !params.cad.enabled && params.boundary.band.has_value();
+  needs.rim = !params.cad.enabled && params.boundary.rim_merge.has_value();
   return needs;
 }
 
 bool serves(const Analysis& analysis, const Parameters& params) {
   const CutNeeds needs = cutNeeds(params);
   return analysis.cad == params.cad.enabled && (!needs.concavity || analysis.has_concavity) &&
-         (!needs.crease || analysis.has_crease);
+         (!needs.crease || analysis.has_crease) && (!needs.rim || analysis.has_rim_crease);
 }
 
 namespace {
@@ -34,13 +34,15 @@ bool splitsCreases(const Parameters& params) {
 }
 
 /// The extensions that measure the surface's bends around the refined supernodes.
-Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph, const Parameters& params,
+Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
+                         std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress) {
   Analysis a = featureStages(std::move(graph), params, tie_rank, times, progress);
+  a.rim = std::move(rim);
   const CutNeeds needs = cutNeeds(params);
   const bool creases = splitsCreases(params);
-  if (!creases && !needs.concavity && !needs.crease)
+  if (!creases && !needs.concavity && !needs.crease && !needs.rim)
     return a;
   // Measured between the supernodes, like eq. (8): their time counts as refinement time.
   Stopwatch clock;
@@ -64,7 +66,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
   const bool keep_xyz =
-      params.cad.enabled || needs.concavity || needs.crease || splitsCreases(params);
+      params.cad.enabled || needs.concavity || needs.crease || needs.rim || splitsCreases(params);
   if (!keep_xyz)
     std::vector<float>().swap(points.xyz);
   times.knn += clock.lap();
@@ -80,11 +82,11 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     times.knn += clock.lap();
     a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank, times, progress);
   } else {
-    a = surfaceAnalysis(points.xyz, std::move(graph), params, rank, times, progress);
+    a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank, times,
+                        progress);
   }
   a.order = std::move(points.order);
   a.noise = noise;
-  a.rim = std::move(points.rim);
   return a;
 }
 

@@ -1,8 +1,10 @@
 #include <pcl_ncut_seg/core/rim_merge.h>
 
+#include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/short_cut.h>
 #include <pcl_ncut_seg/core/supernodes.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -26,6 +28,39 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
   return rim;
 }
 
+std::vector<float> ringAveragedNormals(const CsrGraph& graph, const std::vector<float>& normals,
+                                       int times) {
+  const std::size_t n = graph.numVertices();
+  std::vector<float> in = normals, out(3 * n, 0.0f);
+  for (int t = 0; t < times; ++t) {
+    for (std::size_t p = 0; p < n; ++p) {
+      double sum[3] = {in[3 * p], in[3 * p + 1], in[3 * p + 2]};
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+        for (int d = 0; d < 3; ++d)
+          sum[d] += in[3 * std::size_t(graph.targets[e]) + d];
+      const double len = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
+      for (int d = 0; d < 3; ++d)
+        out[3 * p + d] = len > 0.0 ? static_cast<float>(sum[d] / len) : 0.0f;
+    }
+    in.swap(out);
+  }
+  return in;
+}
+
+std::vector<std::int8_t> signedEdgeBends(const CsrGraph& graph, const float* xyz,
+                                         const std::vector<float>& normals) {
+  std::vector<std::int8_t> bend(graph.numDirectedEdges(), 0);
+  const double typical = meanAbsBend(graph, xyz, normals, 1);
+  if (!(typical > 0.0))
+    return bend;
+  for (std::size_t p = 0; p < graph.numVertices(); ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const double c = -edgeBend(xyz, normals, p, graph.targets[e], graph.lengths[e]) / typical;
+      bend[e] = static_cast<std::int8_t>(std::clamp(std::round(16.0 * c), -127.0, 127.0));
+    }
+  return bend;
+}
+
 namespace {
 // The neck (core/short_cut.h) of a limb as long as it is wide, cut at its base: a tube of
 // radius a and length 2a has 2 pi a / sqrt(2 pi a 2a) = sqrt(pi). A piece chipped off at the
@@ -39,7 +74,7 @@ struct Boundary {
 
 std::vector<std::uint32_t> mergeAcrossRim(const CsrGraph& graph,
                                           const std::vector<std::uint8_t>& rim,
-                                          const std::vector<std::uint8_t>& crease,
+                                          const std::vector<std::int8_t>& crease,
                                           double max_concavity, std::vector<std::uint32_t>& segment,
                                           std::size_t& num_segments) {
   const std::size_t n = graph.numVertices(), t = num_segments;
