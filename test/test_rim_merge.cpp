@@ -8,6 +8,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"
+#include "support/shapes.h"
 
 #include <gtest/gtest.h>
 
@@ -221,8 +222,9 @@ TEST(RimMerge, AnOrganizedViewOfADiscLosesMostOfItsRimPieces) {
   }
 }
 
-TEST(RimMerge, OnlyOrganizedCloudsHaveARim) {
-  // The same points as a plain list (no grid): no rim is known, and nothing is merged.
+TEST(RimMerge, AListOfAViewsPointsIsOneViewFromTheSensor) {
+  // The same points as a plain list (no grid), seen from the sensor origin (0, 0, 0): one
+  // view (core/single_view.h), whose rim the points show.
   const auto view = discView();
   auto list = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   for (const auto& p : *view)
@@ -230,6 +232,21 @@ TEST(RimMerge, OnlyOrganizedCloudsHaveARim) {
       list->push_back(p);
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(list);
+  seg.setNumberOfThreads(2);
+  std::vector<pcl::PointIndices> merged, unmerged;
+  seg.extract(merged);
+  seg.setRimMerge(0.0);
+  seg.extract(unmerged);
+  std::cout << "[ INFO     ] disc view as a list: " << unmerged.size()
+            << " segments without the rim merge, " << merged.size() << " with it\n";
+  EXPECT_LE(2 * merged.size(), unmerged.size());
+}
+
+TEST(RimMerge, AWholeSurfaceIsNoView) {
+  // A closed surface around the sensor origin has no rim: the merge changes nothing.
+  const test::LabeledShape hand = test::makeHand(4000, 3);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(hand.cloud);
   seg.setNumberOfThreads(2);
   std::vector<pcl::PointIndices> on, off;
   seg.extract(on);
@@ -249,4 +266,20 @@ TEST(RimMerge, SetterKeepsTheOldValueOnABadOne) {
   EXPECT_DOUBLE_EQ(seg.getRimMerge(), 0.5);
   seg.setRimMerge(0.0);
   EXPECT_DOUBLE_EQ(seg.getRimMerge(), 0.0);
+}
+
+TEST(RimMerge, TheSameForAnyThreadCount) {
+  const auto cloud = discView();
+  std::vector<pcl::PointIndices> one, two;
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfThreads(1);
+  seg.extract(one);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg2;
+  seg2.setInputCloud(cloud);
+  seg2.setNumberOfThreads(2);
+  seg2.extract(two);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t s = 0; s < one.size(); ++s)
+    EXPECT_EQ(one[s].indices, two[s].indices);
 }

@@ -5,6 +5,7 @@
 #include <pcl_ncut_seg/core/cut_stages.h>
 #include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/morton.h>
+#include <pcl_ncut_seg/core/single_view.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
 #include <pcl_ncut_seg/core/threads.h>
 
@@ -65,6 +66,9 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                               !params.cad.enabled, params.execution.num_threads, &noise);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
+  if (needs.rim && points.rim.empty() && points.sensor_origin)
+    points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
+                               params.execution.num_threads);
   const bool keep_xyz =
       params.cad.enabled || needs.concavity || needs.crease || needs.rim || splitsCreases(params);
   if (!keep_xyz)
@@ -124,6 +128,8 @@ PreparedPoints preparePoints(std::vector<float> xyz) {
   out.set.xyz.resize(3 * m);
   for (std::size_t i = 0; i < 3 * m; ++i)
     out.set.xyz[i] = static_cast<float>(out.raw[i] - c[i % 3]);
+  for (int d = 0; d < 3; ++d)
+    out.centroid[d] = c[d];
   out.point = std::move(order.point);
   out.copies = std::move(order.copies);
   out.set.order = std::move(order.rank);

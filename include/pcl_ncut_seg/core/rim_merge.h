@@ -34,16 +34,19 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
  * few more rings follow the surface, not the noise those stages picked.
  * \param[in] normals  3 floats per vertex, oriented (orientedNormals() in core/concavity.h)
  * \param[in] times    how many times (0: the normals as given)
+ * \param[in] num_threads  0 = all cores; the result does not depend on it
  * \return 3 floats per vertex */
 std::vector<float> ringAveragedNormals(const CsrGraph& graph, const std::vector<float>& normals,
-                                       int times);
+                                       int times, unsigned num_threads = 0);
 
 /** \brief Per directed edge, its concave bend -(n_p - n_q) . (p - q) / |p - q| (negative:
  * convex) over meanAbsBend(), as round(16 c) clamped to +-127. Summed along a boundary, the
  * bends of noise cancel and those of a crease add up.
- * \param[in] normals  3 floats per vertex, oriented */
+ * \param[in] normals  3 floats per vertex, oriented
+ * \param[in] num_threads  0 = all cores; the result does not depend on it */
 std::vector<std::int8_t> signedEdgeBends(const CsrGraph& graph, const float* xyz,
-                                         const std::vector<float>& normals);
+                                         const std::vector<float>& normals,
+                                         unsigned num_threads = 0);
 
 /** \brief Merge touching segments of an open surface whose common boundary is neither a
  * concave crease nor a limb's neck, when one of the two reaches the rim. A limb's neck is

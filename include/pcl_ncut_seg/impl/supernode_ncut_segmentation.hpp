@@ -216,8 +216,14 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   duplicates_.clear();
   for (const auto& c : prepared.copies)
     duplicates_.emplace_back(valid[c.first], c.second);
-  if (input_->isOrganized() && input_->width > 2 && input_->height > 2)
+  if (input_->isOrganized() && input_->width > 2 && input_->height > 2) {
     prepared.set.rim = organizedRim();
+  } else { // the core decides whether the points are one view from there
+    std::array<float, 3> origin;
+    for (int d = 0; d < 3; ++d)
+      origin[d] = static_cast<float>(input_->sensor_origin_[d] - prepared.centroid[d]);
+    prepared.set.sensor_origin = origin;
+  }
   std::vector<int>().swap(valid); // free before the expensive stage, as the maps below
   std::vector<std::uint32_t>().swap(prepared.point);
   decltype(prepared.copies)().swap(prepared.copies);
