@@ -235,12 +235,16 @@ TEST(CorePipeline, AnalysisServesACutOnlyWithWhatItMeasured) {
   Parameters p;
   p.similarity.concavity.reset();
   p.boundary.band.reset();
+  p.boundary.rim_merge.reset();
   EXPECT_FALSE(cutNeeds(p).concavity);
   EXPECT_FALSE(cutNeeds(p).crease);
+  EXPECT_FALSE(cutNeeds(p).rim);
   Analysis a;
   EXPECT_TRUE(serves(a, p));
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the contact concavity";
   a.has_concavity = a.has_crease = true;
+  EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the rim's bends";
+  a.has_rim_crease = true;
   EXPECT_TRUE(serves(a, Parameters()));
   Parameters cad;
   cad.cad.enabled = true;

@@ -152,6 +152,11 @@ struct BoundaryParams {
   /// area. Off: boundaries are supernode boundaries (the paper).
   std::optional<double> band = 0.2;
   double crease_weight = 3.0; ///< a kNN edge costs its length times exp(-w c), c its bend
+  /// Extension (core/rim_merge.h), open views only: two touching segments, one of which
+  /// reaches the view's rim, are merged when their common boundary bends concavely less than
+  /// this on average (signed, in mean bends per kNN edge of normals averaged over the 3-ring)
+  /// and is no limb's neck. Off: the paper.
+  std::optional<double> rim_merge = 1.0;
 };
 
 /** \brief How the work runs; the result never depends on it. */

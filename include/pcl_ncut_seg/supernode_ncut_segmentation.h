@@ -206,6 +206,12 @@ public:
   /** \param[in] weight  boundary.crease_weight, >= 0 */
   void setBoundaryCreaseWeight(double weight);
   double getBoundaryCreaseWeight() const { return params_.boundary.crease_weight; }
+  /** \brief Open views (core/rim_merge.h): on an organized cloud, or one view from the sensor
+   * origin, two touching segments, one of which reaches the view's rim, are merged when their
+   * boundary bends concavely less than this on average and is no limb's neck.
+   * \param[in] concavity  boundary.rim_merge, in mean bends per kNN edge, > 0; 0: off */
+  void setRimMerge(double concavity);
+  double getRimMerge() const { return params_.boundary.rim_merge.value_or(0.0); }
   /** \param[in] concavity  refinement.crease_split, > 0; 0: off */
   void setCreaseSplit(double concavity);
   double getCreaseSplit() const { return params_.refinement.crease_split.value_or(0.0); }
@@ -282,6 +288,8 @@ protected:
   /** \brief Turn the cloud into arrays, find the neighbours and run the core's analysis;
    * false on bad input. */
   bool analyze();
+  /** \brief Per analysed vertex of an organized input, 1 on the view's rim. */
+  std::vector<std::uint8_t> organizedRim() const;
   /** \brief The valid points (in range, finite, each once), sorted; false on a bad index. */
   bool validIndices(std::vector<int>& valid) const;
   /** \brief The k nearest neighbours of each vertex with the search method set. */

@@ -32,9 +32,10 @@ with the library's reason. Segmenter keeps the expensive stage between calls.)do
 
 const char* const kSegmentDoc = R"doc(segment(points, **parameters) -> numpy.ndarray
 
-Segment points, an (N, 3) float32 or float64 array (NaN rows allowed), with the project's
-defaults changed by the keyword parameters (paper=True: the paper's settings). Returns N int32
-labels, 1-based, 0 for points in no segment. ValueError on a bad array, no finite point or a
+Segment points, an (N, 3) float32 or float64 array (NaN rows allowed) or a depth image's
+(H, W, 3) points (NaN where nothing came back; an organized cloud, whose rim is known), with
+the project's defaults changed by the keyword parameters (paper=True: the paper's settings).
+Returns N (or H x W) int32 labels, 1-based, 0 for points in no segment. ValueError on a bad array, no finite point or a
 bad parameter; library warnings (fewer points than k + 1, ...) are RuntimeWarnings.)doc";
 
 const char* const kSegmenterDoc = R"doc(Segmenter(**parameters)
@@ -128,8 +129,8 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
           py::arg("points") = py::none(),
           "segment(points=None, **parameters) -> numpy.ndarray\n\nSet the parameters (as "
           "set()), then segment points (None: the points of the last call, reusing the "
-          "expensive stage when only cut parameters changed). Returns N int32 labels, 1-based, "
-          "0 for points in no segment.")
+          "expensive stage when only cut parameters changed). Returns N int32 labels (H x W for "
+          "an (H, W, 3) image), 1-based, 0 for points in no segment.")
       .def("get_labels", &Segmenter::labels, "The labels of the last segment() (int32, N).")
       .def("get_centrality", &Segmenter::centrality,
            "Centrality f(p) of eq. (1) per point (float32, N); NaN for points not segmented.")

@@ -58,13 +58,18 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr cloudFromArray(const py::handle& points) {
   const py::array a = py::module_::import("numpy").attr("asarray")(points);
   const py::dtype dtype = a.dtype();
   const bool is_float = dtype.kind() == 'f' && (dtype.itemsize() == 4 || dtype.itemsize() == 8);
-  if (a.ndim() != 2 || a.shape(1) != 3 || !is_float)
-    throw py::value_error("points must be an (N, 3) array of float32 or float64, got " +
+  // (H, W, 3): a depth image's points, an organized cloud (its rim is known, core/rim_merge.h).
+  const bool image = a.ndim() == 3 && a.shape(0) > 0 && a.shape(1) > 0 && a.shape(2) == 3;
+  if (!(image || (a.ndim() == 2 && a.shape(1) == 3)) || !is_float)
+    throw py::value_error("points must be an (N, 3) or (H, W, 3) array of float32 or float64, "
+                          "got " +
                           dtype.attr("name").cast<std::string>() + " of shape " + shapeText(a));
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(static_cast<std::size_t>(a.shape(0)));
-  cloud->width = static_cast<std::uint32_t>(cloud->size());
-  cloud->height = 1;
+  const auto height = static_cast<std::uint32_t>(image ? a.shape(0) : 1);
+  const auto width = static_cast<std::uint32_t>(image ? a.shape(1) : a.shape(0));
+  cloud->resize(std::size_t(width) * height);
+  cloud->width = width;
+  cloud->height = height;
   if (dtype.itemsize() == 4)
     fillCloud<float>(a, *cloud);
   else
@@ -164,7 +169,10 @@ void Segmenter::requireResult() const {
 
 py::array_t<std::int32_t> Segmenter::labels() const {
   requireResult();
-  return toArray(labels_);
+  py::array_t<std::int32_t> flat = toArray(labels_);
+  if (cloud_ && cloud_->height > 1) // as the points came: an image's labels
+    return flat.reshape({py::ssize_t(cloud_->height), py::ssize_t(cloud_->width)});
+  return flat;
 }
 
 py::array_t<float> Segmenter::centrality() const {

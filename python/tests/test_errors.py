@@ -20,8 +20,8 @@ def test_wrong_shape(shape):
 @pytest.mark.parametrize("dtype", [np.int64, np.int32, np.float16, np.complex128, bool, object])
 def test_wrong_dtype(dtype):
     points = np.zeros((10, 3), dtype=dtype)
-    with pytest.raises(ValueError, match=r"points must be an \(N, 3\) array of float32 or "
-                       rf"float64, got {np.dtype(dtype).name} of shape \(10, 3\)"):
+    with pytest.raises(ValueError, match=r"points must be an \(N, 3\) or \(H, W, 3\) array of "
+                       rf"float32 or float64, got {np.dtype(dtype).name} of shape \(10, 3\)"):
         pcl_ncut_seg.segment(points)
 
 

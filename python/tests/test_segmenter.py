@@ -17,7 +17,7 @@ OTHER = {
     "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
     "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
     "splits": 50, "min_segment_fraction": 0.1, "max_segments": 4, "gap_floor": 0.01,
-    "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0,
+    "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
     "threads": 1,
 }
 
@@ -151,3 +151,38 @@ def test_the_noise_test_is_reported(points):
     off = pcl_ncut_seg.Segmenter(denoise=None)
     off.segment(points)
     assert off.noise_test == {"residual_growth": 0.0, "projected": False}
+
+
+def disc_view(noise=0.0005, seed=7):
+    """What a depth camera 1 m in front of a tilted flat disc sees: (120, 160, 3), NaN off it."""
+    rows, cols = np.mgrid[0:120, 0:160]
+    u, v = (cols - 80 + 0.5) / 150.0, (rows - 60 + 0.5) / 150.0
+    z = 1.0 / (1.0 - 0.3 * v)  # the plane z = 1 + 0.3 y along the ray (u, v, 1)
+    on = np.hypot(u * z, v * z) <= 0.25
+    z = z + np.random.default_rng(seed).normal(0.0, noise, z.shape)
+    image = np.stack([u * z, v * z, z], axis=-1).astype(np.float32)
+    image[~on] = np.nan
+    return image
+
+
+def test_an_image_of_points_is_an_organized_view():
+    image = disc_view()
+    seg = pcl_ncut_seg.Segmenter(threads=2)
+    labels = seg.segment(image)
+    assert labels.shape == image.shape[:2]
+    assert (labels[np.isnan(image[..., 0])] == 0).all()
+    assert (labels[~np.isnan(image[..., 0])] > 0).all()
+    merged = labels.max()
+    # The same points as a list: no rim is known, so the rim merge changes nothing.
+    points = image.reshape(-1, 3)
+    listed = pcl_ncut_seg.Segmenter(threads=2).segment(points)
+    unmerged_list = pcl_ncut_seg.Segmenter(threads=2, rim_merge=None).segment(points)
+    assert np.array_equal(listed, unmerged_list)
+    # On the image it joins most of the pieces the view's rim cut the flat disc into.
+    unmerged = pcl_ncut_seg.Segmenter(threads=2, rim_merge=None).segment(image)
+    assert 2 * merged <= unmerged.max()
+
+
+def test_a_badly_shaped_image_is_refused():
+    with pytest.raises(ValueError, match=r"\(H, W, 3\)"):
+        pcl_ncut_seg.segment(np.zeros((4, 5, 2), np.float32))

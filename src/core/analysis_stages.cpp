@@ -7,6 +7,7 @@
 #include <pcl_ncut_seg/core/crease_split.h>
 #include <pcl_ncut_seg/core/denoise.h>
 #include <pcl_ncut_seg/core/refinement.h>
+#include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
 #include <pcl_ncut_seg/core/threads.h>
 
@@ -112,6 +113,11 @@ void contactStage(Analysis& a, const float* xyz, const SurfaceBends& bends, cons
         contactConcavity(a.graph, xyz, bends.normals, a.supernodes.label, bends.typical_bend);
   if (needs.crease)
     a.crease = edgeCreases(a.graph, xyz, bends.normals, num_threads, bends.typical_bend);
+  if (needs.rim && !a.rim.empty())
+    // Bends at a scale beyond the 1-ring normals the stages before chose boundaries with.
+    a.rim_crease = signedEdgeBends(
+        a.graph, xyz, ringAveragedNormals(a.graph, bends.normals, 3, num_threads), num_threads);
+  a.has_rim_crease = needs.rim;
   a.has_concavity = needs.concavity;
   a.has_crease = needs.crease;
 }

@@ -2,6 +2,7 @@
 
 #include <pcl_ncut_seg/core/boundary_refinement.h>
 #include <pcl_ncut_seg/core/cad.h>
+#include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/short_cut.h>
 
 #include <algorithm>
@@ -64,6 +65,16 @@ void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r
   if (a.cad || !params.band)
     return;
   refineBoundaries(a.graph, a.radii, a.crease, params, r.point_segment, r.num_segments);
+}
+
+void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
+  if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_crease.empty())
+    return;
+  const std::vector<std::uint32_t> map = mergeAcrossRim(
+      a.graph, a.rim, a.rim_crease, *params.rim_merge, r.point_segment, r.num_segments);
+  for (auto& s : r.supernode_segment)
+    if (s < map.size())
+      s = map[s];
 }
 
 void numberSegments(const std::vector<std::uint32_t>& order, CutResult& r) {

@@ -41,6 +41,7 @@ Parameters Parameters::paper() {
   p.stopping.rule = StoppingRule::Threshold;
   p.stopping.min_segment_fraction.reset();
   p.boundary.band.reset();
+  p.boundary.rim_merge.reset();
   return p;
 }
 

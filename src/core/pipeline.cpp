@@ -5,6 +5,7 @@
 #include <pcl_ncut_seg/core/cut_stages.h>
 #include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/morton.h>
+#include <pcl_ncut_seg/core/single_view.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
 #include <pcl_ncut_seg/core/threads.h>
 
@@ -17,13 +18,14 @@ CutNeeds cutNeeds(const Parameters& params) {
   CutNeeds needs;
   needs.concavity = !params.cad.enabled && params.similarity.concavity.has_value();
   needs.crease = !params.cad.enabled && params.boundary.band.has_value();
+  needs.rim = !params.cad.enabled && params.boundary.rim_merge.has_value();
   return needs;
 }
 
 bool serves(const Analysis& analysis, const Parameters& params) {
   const CutNeeds needs = cutNeeds(params);
   return analysis.cad == params.cad.enabled && (!needs.concavity || analysis.has_concavity) &&
-         (!needs.crease || analysis.has_crease);
+         (!needs.crease || analysis.has_crease) && (!needs.rim || analysis.has_rim_crease);
 }
 
 namespace {
@@ -33,13 +35,15 @@ bool splitsCreases(const Parameters& params) {
 }
 
 /// The extensions that measure the surface's bends around the refined supernodes.
-Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph, const Parameters& params,
+Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
+                         std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress) {
   Analysis a = featureStages(std::move(graph), params, tie_rank, times, progress);
+  a.rim = std::move(rim);
   const CutNeeds needs = cutNeeds(params);
   const bool creases = splitsCreases(params);
-  if (!creases && !needs.concavity && !needs.crease)
+  if (!creases && !needs.concavity && !needs.crease && !needs.rim)
     return a;
   // Measured between the supernodes, like eq. (8): their time counts as refinement time.
   Stopwatch clock;
@@ -62,8 +66,11 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                               !params.cad.enabled, params.execution.num_threads, &noise);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
+  if (needs.rim && points.rim.empty() && points.sensor_origin)
+    points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
+                               params.execution.num_threads);
   const bool keep_xyz =
-      params.cad.enabled || needs.concavity || needs.crease || splitsCreases(params);
+      params.cad.enabled || needs.concavity || needs.crease || needs.rim || splitsCreases(params);
   if (!keep_xyz)
     std::vector<float>().swap(points.xyz);
   times.knn += clock.lap();
@@ -79,7 +86,8 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     times.knn += clock.lap();
     a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank, times, progress);
   } else {
-    a = surfaceAnalysis(points.xyz, std::move(graph), params, rank, times, progress);
+    a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank, times,
+                        progress);
   }
   a.order = std::move(points.order);
   a.noise = noise;
@@ -94,6 +102,7 @@ CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& ti
   times.hierarchy = clock.lap();
   labelPoints(analysis, r);
   boundaryStage(analysis, params.boundary, r);
+  rimStage(analysis, params.boundary, r);
   numberSegments(analysis.order, r);
   times.points = clock.lap();
   return r;
@@ -119,6 +128,8 @@ PreparedPoints preparePoints(std::vector<float> xyz) {
   out.set.xyz.resize(3 * m);
   for (std::size_t i = 0; i < 3 * m; ++i)
     out.set.xyz[i] = static_cast<float>(out.raw[i] - c[i % 3]);
+  for (int d = 0; d < 3; ++d)
+    out.centroid[d] = c[d];
   out.point = std::move(order.point);
   out.copies = std::move(order.copies);
   out.set.order = std::move(order.rank);

@@ -27,6 +27,10 @@ void labelPoints(const Analysis& analysis, CutResult& result);
  * mode or with the band off. */
 void boundaryStage(const Analysis& analysis, const BoundaryParams& params, CutResult& result);
 
+/** \brief Rim stage (extension, open views): merge segments that only the view's rim cut
+ * apart (core/rim_merge.h). No effect in CAD mode, with rim_merge off or without a rim. */
+void rimStage(const Analysis& analysis, const BoundaryParams& params, CutResult& result);
+
 /** \brief Renumber the segments in order of their first vertex in order (empty: by vertex). */
 void numberSegments(const std::vector<std::uint32_t>& order, CutResult& result);
 

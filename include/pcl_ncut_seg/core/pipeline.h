@@ -19,8 +19,10 @@
 #include <pcl_ncut_seg/core/supernodes.h>
 #include <pcl_ncut_seg/parameters.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -49,6 +51,12 @@ struct PointSet {
   /// and segments are numbered by their first vertex in it. Empty: the vertex order.
   std::vector<std::uint32_t> order;
   NormalSource normals; ///< CAD mode; empty: CAD mode fails (no normals)
+  /// Per vertex, 1 where an open view of the surface ends (core/rim_merge.h); empty: a
+  /// surface without a known rim.
+  std::vector<std::uint8_t> rim;
+  /// Where the sensor stood, in the coordinates of xyz; when there is no rim, a cloud that is
+  /// one view from there gets its rim (core/single_view.h). Empty: unknown.
+  std::optional<std::array<float, 3>> sensor_origin;
 };
 
 /** \brief The expensive stage: everything that depends only on the points and the analysis
@@ -73,12 +81,18 @@ struct Analysis {
   bool has_crease = false;
   std::vector<std::uint32_t> order; ///< PointSet::order
   NoiseTest noise;                  ///< the graph stage's noise test (core/denoise.h)
+  std::vector<std::uint8_t> rim;    ///< PointSet::rim
+  /// Per directed kNN edge, its concave bend between normals averaged over the 1-ring (core/
+  /// rim_merge.h); kept when there is a rim and the cut's rim merge uses it.
+  std::vector<std::int8_t> rim_crease;
+  bool has_rim_crease = false;
 };
 
 /** \brief What the cut stages need the analysis to have measured. */
 struct CutNeeds {
   bool concavity = false; ///< Analysis::concavity (similarity.concavity on, not CAD)
   bool crease = false;    ///< Analysis::crease (boundary.band on, not CAD)
+  bool rim = false;       ///< Analysis::rim_crease (boundary.rim_merge on, not CAD)
 };
 CutNeeds cutNeeds(const Parameters& params);
 
@@ -111,7 +125,8 @@ struct PreparedPoints {
   std::vector<std::uint32_t> point; ///< per vertex, the index of its (first) input point
   /// (index of a point at an earlier point's position, its vertex)
   std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;
-  std::vector<float> raw; ///< the input's x, y, z in vertex order (not centred)
+  std::vector<float> raw;         ///< the input's x, y, z in vertex order (not centred)
+  double centroid[3] = {0, 0, 0}; ///< set.xyz = raw - centroid
 };
 
 /** \brief Order, deduplicate and centre points (3 floats each, finite). The centroid is

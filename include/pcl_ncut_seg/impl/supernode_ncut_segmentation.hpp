@@ -13,6 +13,7 @@
 #include <pcl/search/kdtree.h>
 
 #include <pcl_ncut_seg/core/knn.h>
+#include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/threads.h>
 #include <pcl_ncut_seg/impl/supernode_ncut_segmentation_parameters.hpp>
 
@@ -174,6 +175,24 @@ pcl::SupernodeNCutSegmentation<PointT>::cadNormals(const pcl_ncut_seg::CsrGraph&
   return normals;
 }
 
+template <typename PointT>
+std::vector<std::uint8_t> pcl::SupernodeNCutSegmentation<PointT>::organizedRim() const {
+  const std::size_t pixels = input_->size();
+  std::vector<std::uint32_t> pixel_vertex(pixels, pcl_ncut_seg::kNone);
+  for (std::size_t v = 0; v < point_index_.size(); ++v)
+    pixel_vertex[point_index_[v]] = static_cast<std::uint32_t>(v);
+  for (const auto& d : duplicates_)
+    pixel_vertex[d.first] = d.second;
+  std::vector<float> range(pixels, std::numeric_limits<float>::quiet_NaN());
+  const Eigen::Vector3f origin = input_->sensor_origin_.template head<3>();
+  for (std::size_t i = 0; i < pixels; ++i)
+    if (pixel_vertex[i] != pcl_ncut_seg::kNone)
+      range[i] = ((*input_)[i].getVector3fMap() - origin).norm();
+  std::vector<std::uint32_t> vertex_pixel(point_index_.begin(), point_index_.end());
+  return pcl_ncut_seg::organizedRim(vertex_pixel, range, pixel_vertex, input_->width,
+                                    input_->height);
+}
+
 template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
   const auto start = std::chrono::steady_clock::now();
   std::vector<int> valid; // in range, finite, each once, sorted: graph order is cloud order
@@ -197,6 +216,14 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   duplicates_.clear();
   for (const auto& c : prepared.copies)
     duplicates_.emplace_back(valid[c.first], c.second);
+  if (input_->isOrganized() && input_->width > 2 && input_->height > 2) {
+    prepared.set.rim = organizedRim();
+  } else { // the core decides whether the points are one view from there
+    std::array<float, 3> origin;
+    for (int d = 0; d < 3; ++d)
+      origin[d] = static_cast<float>(input_->sensor_origin_[d] - prepared.centroid[d]);
+    prepared.set.sensor_origin = origin;
+  }
   std::vector<int>().swap(valid); // free before the expensive stage, as the maps below
   std::vector<std::uint32_t>().swap(prepared.point);
   decltype(prepared.copies)().swap(prepared.copies);

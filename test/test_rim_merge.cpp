@@ -1,0 +1,285 @@
+/*
+ * Open views: the rim of an organized cloud and the segments only the rim cut apart
+ * (core/rim_merge.h, SupernodeNCutSegmentation::setRimMerge).
+ */
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/rim_merge.h>
+#include <pcl_ncut_seg/core/supernodes.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/knn_graph.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+/// A flat sheet of w x h points on a unit grid (z = 0), row by row.
+std::vector<float> sheet(std::size_t w, std::size_t h) {
+  std::vector<float> xyz;
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      xyz.push_back(static_cast<float>(x));
+      xyz.push_back(static_cast<float>(y));
+      xyz.push_back(0.0f);
+    }
+  return xyz;
+}
+
+/// Per point of sheet(w, h), 1 on its outer ring: the rim of a view of the sheet.
+std::vector<std::uint8_t> outerRing(std::size_t w, std::size_t h) {
+  std::vector<std::uint8_t> rim(w * h, 0);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x)
+      rim[y * w + x] = x == 0 || y == 0 || x + 1 == w || y + 1 == h;
+  return rim;
+}
+
+/// A disc in the middle of the sheet and the ring around it cut into four quadrants, the
+/// pieces a view's rim cuts a flat region into.
+std::vector<std::uint32_t> discAndQuadrants(std::size_t w, std::size_t h) {
+  std::vector<std::uint32_t> segment(w * h);
+  const double cx = 0.5 * (w - 1), cy = 0.5 * (h - 1);
+  for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t x = 0; x < w; ++x) {
+      const double dx = x - cx, dy = y - cy;
+      segment[y * w + x] = std::hypot(dx, dy) < 0.3 * w ? 0u : 1u + (dx > 0) + 2u * (dy > 0);
+    }
+  return segment;
+}
+
+std::size_t countLabels(const std::vector<std::uint32_t>& segment) {
+  return std::set<std::uint32_t>(segment.begin(), segment.end()).size();
+}
+
+} // namespace
+
+TEST(OrganizedRim, MarksTheImageBorderHolesAndDepthJumps) {
+  // 6 x 5 pixels; pixel 14 (row 2, column 2) has no point; pixel 10 (row 1, column 4) lies 50%
+  // farther than its neighbours (a surface behind an occluding edge).
+  const std::size_t w = 6, h = 5;
+  std::vector<float> range(w * h, 1.0f);
+  std::vector<std::uint32_t> pixel_vertex(w * h, kNone), vertex_pixel;
+  for (std::uint32_t px = 0; px < w * h; ++px)
+    if (px != 14) {
+      pixel_vertex[px] = static_cast<std::uint32_t>(vertex_pixel.size());
+      vertex_pixel.push_back(px);
+    }
+  range[14] = std::numeric_limits<float>::quiet_NaN();
+  range[10] = 1.5f;
+  const std::vector<std::uint8_t> rim = organizedRim(vertex_pixel, range, pixel_vertex, w, h);
+  ASSERT_EQ(rim.size(), vertex_pixel.size());
+  const std::set<std::uint32_t> inside_rim = {8, 13, 15, 20, 9, 10, 16};
+  for (std::size_t v = 0; v < rim.size(); ++v) {
+    const std::uint32_t px = vertex_pixel[v], row = px / w, col = px % w;
+    const bool border = row == 0 || col == 0 || row + 1 == h || col + 1 == w;
+    EXPECT_EQ(rim[v] != 0, border || inside_rim.count(px) > 0) << "pixel " << px;
+  }
+}
+
+TEST(RimMerge, MergesTheFlatPiecesOfAnOpenSheet) {
+  const std::size_t w = 40, h = 30;
+  const CsrGraph graph = test::kdTreeKnnGraph(sheet(w, h), 8);
+  std::vector<std::uint32_t> segment = discAndQuadrants(w, h);
+  std::size_t t = 5;
+  const std::vector<std::int8_t> flat(graph.numDirectedEdges(), 0);
+  const std::vector<std::uint32_t> map =
+      mergeAcrossRim(graph, outerRing(w, h), flat, 1.0, segment, t);
+  EXPECT_EQ(t, 1u);
+  EXPECT_EQ(countLabels(segment), 1u);
+  ASSERT_EQ(map.size(), 5u);
+  for (std::uint32_t s : map)
+    EXPECT_EQ(s, 0u);
+}
+
+TEST(RimMerge, KeepsBoundariesAlongConcaveCreases) {
+  const std::size_t w = 40, h = 30;
+  const CsrGraph graph = test::kdTreeKnnGraph(sheet(w, h), 8);
+  std::vector<std::uint32_t> segment = discAndQuadrants(w, h);
+  const std::vector<std::uint32_t> before = segment;
+  // Every edge that crosses a boundary bends concavely by 1.25 mean bends (16 per bend).
+  std::vector<std::int8_t> crease(graph.numDirectedEdges(), 0);
+  for (std::uint32_t p = 0; p < graph.numVertices(); ++p)
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      if (segment[p] != segment[graph.targets[e]])
+        crease[e] = 20;
+  std::size_t t = 5;
+  EXPECT_TRUE(mergeAcrossRim(graph, outerRing(w, h), crease, 1.0, segment, t).empty());
+  EXPECT_EQ(t, 5u);
+  EXPECT_EQ(segment, before);
+  // Below the bound (1.5 mean bends) the same boundaries are not creases.
+  EXPECT_EQ(mergeAcrossRim(graph, outerRing(w, h), crease, 1.5, segment, t).size(), 5u);
+  EXPECT_EQ(t, 1u);
+}
+
+TEST(RimMerge, KeepsALimbOnTheRim) {
+  // A 30 x 30 sheet with a strip 3 points wide and 20 long standing out of its top edge: a limb
+  // with a narrow neck (3 / sqrt(3 x 20)), flat and reaching the rim like everything else.
+  std::vector<float> xyz = sheet(30, 30);
+  std::vector<std::uint32_t> segment(30 * 30, 0);
+  std::vector<std::uint8_t> rim = outerRing(30, 30);
+  for (int y = 30; y < 50; ++y)
+    for (int x = 13; x < 16; ++x) {
+      xyz.insert(xyz.end(), {float(x), float(y), 0.0f});
+      segment.push_back(1);
+      rim.push_back(1);
+    }
+  for (int x = 13; x < 16; ++x)
+    rim[29 * 30 + x] = 0; // where the limb joins, the sheet goes on
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 8);
+  std::size_t t = 2;
+  const std::vector<std::int8_t> flat(graph.numDirectedEdges(), 0);
+  EXPECT_TRUE(mergeAcrossRim(graph, rim, flat, 1.0, segment, t).empty());
+  EXPECT_EQ(t, 2u);
+}
+
+TEST(RimMerge, NothingWithoutARim) {
+  const std::size_t w = 40, h = 30;
+  const CsrGraph graph = test::kdTreeKnnGraph(sheet(w, h), 8);
+  std::vector<std::uint32_t> segment = discAndQuadrants(w, h);
+  const std::vector<std::uint32_t> before = segment;
+  std::size_t t = 5;
+  const std::vector<std::int8_t> flat(graph.numDirectedEdges(), 0);
+  const std::vector<std::uint8_t> none(w * h, 0);
+  EXPECT_TRUE(mergeAcrossRim(graph, none, flat, 1.0, segment, t).empty());
+  EXPECT_EQ(segment, before);
+  // Sizes that do not match the graph: no merge, no crash.
+  EXPECT_TRUE(
+      mergeAcrossRim(graph, std::vector<std::uint8_t>(3, 1), flat, 1.0, segment, t).empty());
+  EXPECT_EQ(t, 5u);
+}
+
+namespace {
+
+/// What a depth camera 1 m in front of a tilted flat disc sees: an organized 160 x 120 cloud,
+/// NaN off the disc, with small range noise.
+pcl::PointCloud<pcl::PointXYZ>::Ptr discView() {
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(160, 120);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<float> noise(0.0f, 0.0005f);
+  const float f = 150.0f, nan = std::numeric_limits<float>::quiet_NaN();
+  for (int row = 0; row < 120; ++row)
+    for (int col = 0; col < 160; ++col) {
+      const float u = (col - 80 + 0.5f) / f, v = (row - 60 + 0.5f) / f;
+      // The plane z = 1 + 0.3 y, along the ray (u, v, 1).
+      const float z = 1.0f / (1.0f - 0.3f * v);
+      pcl::PointXYZ& p = (*cloud)(col, row);
+      if (std::hypot(u * z, v * z - 0.0f) > 0.25f) {
+        p.x = p.y = p.z = nan;
+        continue;
+      }
+      const float zn = z + noise(rng);
+      p.x = u * zn;
+      p.y = v * zn;
+      p.z = zn;
+    }
+  cloud->is_dense = false;
+  return cloud;
+}
+
+std::map<std::uint32_t, std::set<std::uint32_t>>
+pieces(const std::vector<pcl::PointIndices>& merged, const std::vector<pcl::PointIndices>& unmerged,
+       std::size_t cloud_size) {
+  std::vector<std::uint32_t> before(cloud_size, kNone);
+  for (std::size_t s = 0; s < unmerged.size(); ++s)
+    for (int i : unmerged[s].indices)
+      before[i] = static_cast<std::uint32_t>(s);
+  std::map<std::uint32_t, std::set<std::uint32_t>> owner; // unmerged segment -> merged ones
+  for (std::size_t s = 0; s < merged.size(); ++s)
+    for (int i : merged[s].indices)
+      owner[before[i]].insert(static_cast<std::uint32_t>(s));
+  return owner;
+}
+
+} // namespace
+
+TEST(RimMerge, AnOrganizedViewOfADiscLosesMostOfItsRimPieces) {
+  const auto cloud = discView();
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfThreads(2);
+  std::vector<pcl::PointIndices> merged, unmerged;
+  seg.extract(merged);
+  seg.setRimMerge(0.0);
+  seg.extract(unmerged);
+  // A flat disc is one part; the rim merge joins most of what the rim cut it into (one
+  // segment is the goal, docs/views.md).
+  EXPECT_LE(2 * merged.size(), unmerged.size());
+  std::cout << "[ INFO     ] disc view: " << unmerged.size() << " segments without the rim merge, "
+            << merged.size() << " with it\n";
+  // The merge only joins whole segments: each unmerged segment lies in one merged segment.
+  for (const auto& [segment, owners] : pieces(merged, unmerged, cloud->size())) {
+    EXPECT_NE(segment, kNone);
+    EXPECT_EQ(owners.size(), 1u) << "segment " << segment;
+  }
+}
+
+TEST(RimMerge, AListOfAViewsPointsIsOneViewFromTheSensor) {
+  // The same points as a plain list (no grid), seen from the sensor origin (0, 0, 0): one
+  // view (core/single_view.h), whose rim the points show.
+  const auto view = discView();
+  auto list = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  for (const auto& p : *view)
+    if (std::isfinite(p.x))
+      list->push_back(p);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(list);
+  seg.setNumberOfThreads(2);
+  std::vector<pcl::PointIndices> merged, unmerged;
+  seg.extract(merged);
+  seg.setRimMerge(0.0);
+  seg.extract(unmerged);
+  std::cout << "[ INFO     ] disc view as a list: " << unmerged.size()
+            << " segments without the rim merge, " << merged.size() << " with it\n";
+  EXPECT_LE(2 * merged.size(), unmerged.size());
+}
+
+TEST(RimMerge, AWholeSurfaceIsNoView) {
+  // A closed surface around the sensor origin has no rim: the merge changes nothing.
+  const test::LabeledShape hand = test::makeHand(4000, 3);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(hand.cloud);
+  seg.setNumberOfThreads(2);
+  std::vector<pcl::PointIndices> on, off;
+  seg.extract(on);
+  seg.setRimMerge(0.0);
+  seg.extract(off);
+  ASSERT_EQ(on.size(), off.size());
+  for (std::size_t s = 0; s < on.size(); ++s)
+    EXPECT_EQ(on[s].indices, off[s].indices);
+}
+
+TEST(RimMerge, SetterKeepsTheOldValueOnABadOne) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 1.0);
+  seg.setRimMerge(-1.0);
+  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 1.0);
+  seg.setRimMerge(0.5);
+  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 0.5);
+  seg.setRimMerge(0.0);
+  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 0.0);
+}
+
+TEST(RimMerge, TheSameForAnyThreadCount) {
+  const auto cloud = discView();
+  std::vector<pcl::PointIndices> one, two;
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfThreads(1);
+  seg.extract(one);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg2;
+  seg2.setInputCloud(cloud);
+  seg2.setNumberOfThreads(2);
+  seg2.extract(two);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t s = 0; s < one.size(); ++s)
+    EXPECT_EQ(one[s].indices, two[s].indices);
+}
