@@ -159,11 +159,23 @@ TEST(Robustness, OrganizedCloudWithNanHoles) {
 
   Seg seg;
   seg.setInputCloud(organized);
+  Extracted merged = extractCapturing(seg);
+  ASSERT_FALSE(merged.segments.empty()) << merged.err;
+  expectPartition(merged.segments, *organized);
+  // Without the rim merge, which only an organized cloud's rim allows here (core/rim_merge.h):
+  // the same segmentation as the cloud without the holes.
+  seg.setRimMerge(0.0);
   Extracted r = extractCapturing(seg);
   ASSERT_FALSE(r.segments.empty()) << r.err;
   expectPartition(r.segments, *organized);
-  // The same segmentation as the cloud without the holes.
-  const Segments clean = segment(dense);
+  std::vector<int> merged_of(w * h, -1);
+  for (std::size_t s = 0; s < merged.segments.size(); ++s)
+    for (int i : merged.segments[s].indices)
+      merged_of[i] = static_cast<int>(s);
+  for (const auto& segment : r.segments) // the merge joins whole segments
+    for (int i : segment.indices)
+      EXPECT_EQ(merged_of[i], merged_of[segment.indices[0]]);
+  const Segments clean = segment(dense, [](Seg& s) { s.setRimMerge(0.0); });
   ASSERT_EQ(clean.size(), r.segments.size());
   for (std::size_t s = 0; s < clean.size(); ++s) {
     ASSERT_EQ(clean[s].indices.size(), r.segments[s].indices.size());

@@ -173,14 +173,23 @@ def test_an_image_of_points_is_an_organized_view():
     assert (labels[np.isnan(image[..., 0])] == 0).all()
     assert (labels[~np.isnan(image[..., 0])] > 0).all()
     merged = labels.max()
-    # The same points as a list: no rim is known, so the rim merge changes nothing.
-    points = image.reshape(-1, 3)
-    listed = pcl_ncut_seg.Segmenter(threads=2).segment(points)
-    unmerged_list = pcl_ncut_seg.Segmenter(threads=2, rim_merge=None).segment(points)
-    assert np.array_equal(listed, unmerged_list)
     # On the image it joins most of the pieces the view's rim cut the flat disc into.
     unmerged = pcl_ncut_seg.Segmenter(threads=2, rim_merge=None).segment(image)
     assert 2 * merged <= unmerged.max()
+    # The same points as a list are one view from the sensor origin (0, 0, 0): merged too.
+    points = image.reshape(-1, 3)
+    listed = pcl_ncut_seg.Segmenter(threads=2).segment(points)
+    unmerged_list = pcl_ncut_seg.Segmenter(threads=2, rim_merge=None).segment(points)
+    assert 2 * listed.max() <= unmerged_list.max()
+    # A closed surface in front of the origin is no view from it (its back is seen through
+    # its front): nothing merges.
+    i = np.arange(3000) + 0.5
+    z = 1.0 - 2.0 * i / 3000
+    a = np.pi * (3.0 - np.sqrt(5.0)) * i
+    r = np.sqrt(1.0 - z * z)
+    ball = (0.2 * np.stack([r * np.cos(a), r * np.sin(a), z], 1) + [0.0, 0.0, 1.0]).astype(np.float32)
+    assert np.array_equal(pcl_ncut_seg.Segmenter(threads=2).segment(ball),
+                          pcl_ncut_seg.Segmenter(threads=2, rim_merge=None).segment(ball))
 
 
 def test_a_badly_shaped_image_is_refused():
