@@ -244,7 +244,7 @@ TEST(CorePipeline, AnalysisServesACutOnlyWithWhatItMeasured) {
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the contact concavity";
   a.has_concavity = a.has_crease = true;
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the rim's bends";
-  a.has_rim_crease = true;
+  a.has_rim_planes = true;
   EXPECT_TRUE(serves(a, Parameters()));
   Parameters cad;
   cad.cad.enabled = true;

@@ -153,10 +153,10 @@ struct BoundaryParams {
   std::optional<double> band = 0.2;
   double crease_weight = 3.0; ///< a kNN edge costs its length times exp(-w c), c its bend
   /// Extension (core/rim_merge.h), open views only: two touching segments, one of which
-  /// reaches the view's rim, are merged when their common boundary bends concavely less than
-  /// this on average (signed, in mean bends per kNN edge of normals averaged over the 3-ring)
-  /// and is no limb's neck. Off: the paper.
-  std::optional<double> rim_merge = 1.0;
+  /// reaches the view's rim, are merged when the planes of the boundary's two sides (3 rings
+  /// each) meet at a concave angle below this many degrees (PCL's LCCP calls 10 degrees
+  /// convex) and the boundary is no limb's neck. Off: the paper.
+  std::optional<double> rim_merge = 10.0;
 };
 
 /** \brief How the work runs; the result never depends on it. */

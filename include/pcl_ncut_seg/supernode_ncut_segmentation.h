@@ -207,10 +207,11 @@ public:
   void setBoundaryCreaseWeight(double weight);
   double getBoundaryCreaseWeight() const { return params_.boundary.crease_weight; }
   /** \brief Open views (core/rim_merge.h): on an organized cloud, or one view from the sensor
-   * origin, two touching segments, one of which reaches the view's rim, are merged when their
-   * boundary bends concavely less than this on average and is no limb's neck.
-   * \param[in] concavity  boundary.rim_merge, in mean bends per kNN edge, > 0; 0: off */
-  void setRimMerge(double concavity);
+   * origin, two touching segments, one of which reaches the view's rim, are merged when the
+   * planes of their boundary's two sides meet at a concave angle below this and the boundary
+   * is no limb's neck.
+   * \param[in] degrees  boundary.rim_merge, in (0, 180]; 0: off */
+  void setRimMerge(double degrees);
   double getRimMerge() const { return params_.boundary.rim_merge.value_or(0.0); }
   /** \param[in] concavity  refinement.crease_split, > 0; 0: off */
   void setCreaseSplit(double concavity);

@@ -113,11 +113,11 @@ void contactStage(Analysis& a, const float* xyz, const SurfaceBends& bends, cons
         contactConcavity(a.graph, xyz, bends.normals, a.supernodes.label, bends.typical_bend);
   if (needs.crease)
     a.crease = edgeCreases(a.graph, xyz, bends.normals, num_threads, bends.typical_bend);
-  if (needs.rim && !a.rim.empty())
-    // Bends at a scale beyond the 1-ring normals the stages before chose boundaries with.
-    a.rim_crease = signedEdgeBends(
-        a.graph, xyz, ringAveragedNormals(a.graph, bends.normals, 3, num_threads), num_threads);
-  a.has_rim_crease = needs.rim;
+  if (needs.rim && !a.rim.empty()) {
+    a.rim_xyz.assign(xyz, xyz + 3 * a.graph.numVertices());
+    a.rim_normals = bends.normals;
+  }
+  a.has_rim_planes = needs.rim;
   a.has_concavity = needs.concavity;
   a.has_crease = needs.crease;
 }

@@ -68,10 +68,10 @@ void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r
 }
 
 void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
-  if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_crease.empty())
+  if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_xyz.empty())
     return;
   const std::vector<std::uint32_t> map = mergeAcrossRim(
-      a.graph, a.rim, a.rim_crease, *params.rim_merge, r.point_segment, r.num_segments);
+      a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];

@@ -495,13 +495,13 @@ std::vector<ParameterInfo> makeTable() {
           false, {"bandcrease"}),
       atLeast(0), FIELD(boundary.crease_weight)));
   t.push_back(number<double, std::optional<double>>(
-      row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "C",
+      row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "DEG",
           "open views (an organized cloud, or one view from the sensor origin): merge two "
-          "touching segments, one reaching the view's rim, when their boundary bends concavely "
-          "less than C mean bends per kNN edge on average (of normals averaged over the "
-          "3-ring) and its neck is at least sqrt(pi) (no limb's); not in CAD mode",
+          "touching segments, one reaching the view's rim, when the planes of the boundary's "
+          "two sides (3 rings each) meet at a concave angle below DEG degrees and its neck is "
+          "at least sqrt(pi) (no limb's); not in CAD mode",
           false),
-      above(0), FIELD(boundary.rim_merge), "off"));
+      leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));
   // Execution
   t.push_back(number<unsigned, unsigned>(
       row("threads", "execution.num_threads", S::Execution, K::Integer, "N",

@@ -25,7 +25,7 @@ CutNeeds cutNeeds(const Parameters& params) {
 bool serves(const Analysis& analysis, const Parameters& params) {
   const CutNeeds needs = cutNeeds(params);
   return analysis.cad == params.cad.enabled && (!needs.concavity || analysis.has_concavity) &&
-         (!needs.crease || analysis.has_crease) && (!needs.rim || analysis.has_rim_crease);
+         (!needs.crease || analysis.has_crease) && (!needs.rim || analysis.has_rim_planes);
 }
 
 namespace {

@@ -1,9 +1,9 @@
 #include <pcl_ncut_seg/core/rim_merge.h>
 
-#include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/short_cut.h>
 #include <pcl_ncut_seg/core/supernodes.h>
-#include <pcl_ncut_seg/core/threads.h>
+
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
@@ -28,106 +28,141 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
   return rim;
 }
 
-std::vector<float> ringAveragedNormals(const CsrGraph& graph, const std::vector<float>& normals,
-                                       int times, unsigned num_threads) {
-  const auto n = static_cast<std::ptrdiff_t>(graph.numVertices());
-  std::vector<float> in = normals, out(3 * std::size_t(n), 0.0f);
-  for (int t = 0; t < times; ++t) {
-    // Each vertex on its own: the same for any thread count.
-#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
-    for (std::ptrdiff_t ip = 0; ip < n; ++ip) {
-      const auto p = static_cast<std::size_t>(ip);
-      double sum[3] = {in[3 * p], in[3 * p + 1], in[3 * p + 2]};
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-        for (int d = 0; d < 3; ++d)
-          sum[d] += in[3 * std::size_t(graph.targets[e]) + d];
-      const double len = std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]);
-      for (int d = 0; d < 3; ++d)
-        out[3 * p + d] = len > 0.0 ? static_cast<float>(sum[d] / len) : 0.0f;
-    }
-    in.swap(out);
-  }
-  return in;
-}
-
-std::vector<std::int8_t> signedEdgeBends(const CsrGraph& graph, const float* xyz,
-                                         const std::vector<float>& normals, unsigned num_threads) {
-  std::vector<std::int8_t> bend(graph.numDirectedEdges(), 0);
-  const double typical = meanAbsBend(graph, xyz, normals, num_threads);
-  if (!(typical > 0.0))
-    return bend;
-#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
-  for (std::ptrdiff_t ip = 0; ip < static_cast<std::ptrdiff_t>(graph.numVertices()); ++ip) {
-    const auto p = static_cast<std::size_t>(ip);
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const double c = -edgeBend(xyz, normals, p, graph.targets[e], graph.lengths[e]) / typical;
-      bend[e] = static_cast<std::int8_t>(std::clamp(std::round(16.0 * c), -127.0, 127.0));
-    }
-  }
-  return bend;
-}
-
 namespace {
 // The neck (core/short_cut.h) of a limb as long as it is wide, cut at its base: a tube of
 // radius a and length 2a has 2 pi a / sqrt(2 pi a 2a) = sqrt(pi). A piece chipped off at the
 // rim has a wider one (a half disc: sqrt(2 pi)); a limb a narrower one.
 const double kLimbNeck = std::sqrt(3.14159265358979323846);
+// Each side of a boundary: its points within this many rings of the other side.
+constexpr int kBandRings = 3;
 
-struct Boundary {
-  double edges = 0, concave = 0;
-};
-} // namespace
-
-std::vector<std::uint32_t> mergeAcrossRim(const CsrGraph& graph,
-                                          const std::vector<std::uint8_t>& rim,
-                                          const std::vector<std::int8_t>& crease,
-                                          double max_concavity, std::vector<std::uint32_t>& segment,
-                                          std::size_t& num_segments) {
-  const std::size_t n = graph.numVertices(), t = num_segments;
-  if (rim.size() != n || crease.size() != graph.numDirectedEdges() || t < 2)
-    return {};
-  // One pass over the graph: per pair of input segments their boundary, per segment whether it
-  // reaches the rim; a merged segment's boundaries are sums of these.
-  std::vector<std::uint8_t> on_rim(t, 0);
-  std::vector<Boundary> between(t * t);
-  for (std::uint32_t p = 0; p < n; ++p) {
-    on_rim[segment[p]] |= rim[p];
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const std::uint32_t a = segment[p], b = segment[graph.targets[e]];
-      if (a != b) {
-        between[a * t + b].edges += 1;
-        between[a * t + b].concave += crease[e] / 16.0;
-      }
-    }
+/// Moments of one side of a boundary: enough to fit its plane, and to add up when segments
+/// merge.
+struct Band {
+  double count = 0;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  void add(const Band& o) {
+    count += o.count;
+    sum += o.sum;
+    normal += o.normal;
+    outer += o.outer;
   }
-  const NeckMeasure necks(graph, segment, t);
-  std::vector<std::uint32_t> group(t); // per input segment, its merged segment (a root id)
-  std::iota(group.begin(), group.end(), 0u);
-  bool merged = false;
-  for (;;) {
-    std::vector<Boundary> pair(t * t);
-    for (std::size_t a = 0; a < t; ++a)
-      for (std::size_t b = 0; b < t; ++b)
-        if (group[a] < group[b]) {
-          Boundary& sum = pair[group[a] * t + group[b]];
-          for (const Boundary& bd : {between[a * t + b], between[b * t + a]}) {
-            sum.edges += bd.edges;
-            sum.concave += bd.concave;
+  /// The least-squares plane: its centre and unit normal, oriented as the points' normals.
+  bool plane(Eigen::Vector3d& centre, Eigen::Vector3d& n) const {
+    if (count < 3)
+      return false;
+    centre = sum / count;
+    const Eigen::Matrix3d cov = outer / count - centre * centre.transpose();
+    n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    if (n.dot(normal) < 0)
+      n = -n;
+    return true;
+  }
+};
+
+/// Per ordered pair (a, b) of segments (index a * t + b), a's band towards b: the points of a
+/// within kBandRings rings of b, by a breadth-first search from b's neighbours.
+std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz,
+                            const std::vector<float>& normals,
+                            const std::vector<std::uint32_t>& segment, std::size_t t) {
+  const std::size_t n = graph.numVertices();
+  std::vector<Band> band(t * t);
+  std::vector<std::uint32_t> seen(n, kNone), frontier, next, border;
+  for (std::uint32_t p = 0; p < n; ++p) // the points with a neighbour in another segment
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      if (segment[graph.targets[e]] != segment[p]) {
+        border.push_back(p);
+        break;
+      }
+  for (std::uint32_t b = 0; b < t; ++b) {
+    frontier.clear();
+    for (std::uint32_t p : border)
+      if (segment[p] != b)
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+          if (segment[graph.targets[e]] == b) {
+            seen[p] = b;
+            frontier.push_back(p);
+            break;
+          }
+    for (int ring = 0; ring < kBandRings && !frontier.empty(); ++ring) {
+      next.clear();
+      for (std::uint32_t p : frontier) {
+        Band& bd = band[segment[p] * t + b];
+        const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+        bd.count += 1;
+        bd.sum += x;
+        bd.outer += x * x.transpose();
+        bd.normal += Eigen::Vector3d(normals[3 * p], normals[3 * p + 1], normals[3 * p + 2]);
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          if (seen[q] != b && segment[q] == segment[p]) {
+            seen[q] = b;
+            next.push_back(q);
           }
         }
+      }
+      frontier.swap(next);
+    }
+  }
+  return band;
+}
+
+/// How concave (radians) the two merged groups a and b meet; negative when they cannot be
+/// measured (a side with fewer than 3 points).
+double concaveAngle(const std::vector<Band>& band, const std::vector<std::uint32_t>& group,
+                    std::uint32_t a, std::uint32_t b) {
+  const std::size_t t = group.size();
+  Band ab, ba;
+  for (std::size_t i = 0; i < t; ++i)
+    for (std::size_t j = 0; j < t; ++j)
+      if (group[i] == a && group[j] == b) {
+        ab.add(band[i * t + j]);
+        ba.add(band[j * t + i]);
+      }
+  Eigen::Vector3d ca, na, cb, nb;
+  if (!ab.plane(ca, na) || !ba.plane(cb, nb))
+    return -1.0;
+  // Concave where the normals lean towards each other (as contactConcavity() reads bends).
+  if ((na - nb).dot(ca - cb) >= 0.0)
+    return 0.0;
+  return std::acos(std::clamp(na.dot(nb), -1.0, 1.0));
+}
+} // namespace
+
+std::vector<std::uint32_t>
+mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
+               const std::vector<float>& xyz, const std::vector<float>& normals, double max_degrees,
+               std::vector<std::uint32_t>& segment, std::size_t& num_segments) {
+  const std::size_t n = graph.numVertices(), t = num_segments;
+  if (rim.size() != n || xyz.size() != 3 * n || normals.size() != 3 * n || t < 2)
+    return {};
+  std::vector<std::uint8_t> on_rim(t, 0);
+  for (std::uint32_t p = 0; p < n; ++p)
+    on_rim[segment[p]] |= rim[p];
+  // Measured once over the input segments; a merged segment's sides are sums of these.
+  const std::vector<Band> band = sideBands(graph, xyz, normals, segment, t);
+  const NeckMeasure necks(graph, segment, t);
+  std::vector<std::uint32_t> group(t); // per input segment, its merged one (its smallest id)
+  std::iota(group.begin(), group.end(), 0u);
+  const double bound = max_degrees * 3.14159265358979323846 / 180.0;
+  bool merged = false;
+  for (;;) {
     std::uint32_t best_a = kNone, best_b = kNone;
-    double best_c = max_concavity;
+    double best = bound;
     for (std::uint32_t a = 0; a < t; ++a)
       for (std::uint32_t b = a + 1; b < t; ++b) {
-        const Boundary& bd = pair[a * t + b];
-        if (bd.edges == 0 || !(on_rim[a] || on_rim[b]) || !(bd.concave / bd.edges < best_c))
+        if (group[a] != a || group[b] != b || !(on_rim[a] || on_rim[b]))
+          continue;
+        const double angle = concaveAngle(band, group, a, b);
+        if (angle < 0.0 || !(angle < best))
           continue;
         std::vector<std::int8_t> side(t, -1);
         for (std::size_t s = 0; s < t; ++s)
           side[s] = group[s] == a ? 0 : group[s] == b ? 1 : -1;
         if (necks.neck(side) < kLimbNeck)
           continue;
-        best_c = bd.concave / bd.edges;
+        best = angle;
         best_a = a;
         best_b = b;
       }

@@ -82,17 +82,17 @@ struct Analysis {
   std::vector<std::uint32_t> order; ///< PointSet::order
   NoiseTest noise;                  ///< the graph stage's noise test (core/denoise.h)
   std::vector<std::uint8_t> rim;    ///< PointSet::rim
-  /// Per directed kNN edge, its concave bend between normals averaged over the 1-ring (core/
-  /// rim_merge.h); kept when there is a rim and the cut's rim merge uses it.
-  std::vector<std::int8_t> rim_crease;
-  bool has_rim_crease = false;
+  /// The points and their oriented normals, kept when there is a rim and the cut's rim merge
+  /// fits planes to the sides of boundaries (core/rim_merge.h).
+  std::vector<float> rim_xyz, rim_normals;
+  bool has_rim_planes = false;
 };
 
 /** \brief What the cut stages need the analysis to have measured. */
 struct CutNeeds {
   bool concavity = false; ///< Analysis::concavity (similarity.concavity on, not CAD)
   bool crease = false;    ///< Analysis::crease (boundary.band on, not CAD)
-  bool rim = false;       ///< Analysis::rim_crease (boundary.rim_merge on, not CAD)
+  bool rim = false;       ///< Analysis::rim_xyz, rim_normals (boundary.rim_merge on, not CAD)
 };
 CutNeeds cutNeeds(const Parameters& params);
 
