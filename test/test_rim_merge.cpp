@@ -241,17 +241,26 @@ pieces(const std::vector<pcl::PointIndices>& merged, const std::vector<pcl::Poin
   return owner;
 }
 
+/// The segments of a cloud with the rim merge (the default) and without it.
+struct WithAndWithout {
+  std::vector<pcl::PointIndices> merged, unmerged;
+};
+WithAndWithout segmentWithAndWithoutMerge(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud) {
+  WithAndWithout r;
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfThreads(2);
+  seg.extract(r.merged);
+  seg.setRimMerge(0.0);
+  seg.extract(r.unmerged);
+  return r;
+}
+
 } // namespace
 
 TEST(RimMerge, AnOrganizedViewOfADiscIsOneSegment) {
   const auto cloud = discView();
-  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  seg.setInputCloud(cloud);
-  seg.setNumberOfThreads(2);
-  std::vector<pcl::PointIndices> merged, unmerged;
-  seg.extract(merged);
-  seg.setRimMerge(0.0);
-  seg.extract(unmerged);
+  const auto [merged, unmerged] = segmentWithAndWithoutMerge(cloud);
   // A flat disc is one part: the rim merge joins what the rim cut it into.
   EXPECT_GT(unmerged.size(), 1u);
   EXPECT_EQ(merged.size(), 1u);
@@ -272,13 +281,7 @@ TEST(RimMerge, AListOfAViewsPointsIsOneViewFromTheSensor) {
   for (const auto& p : *view)
     if (std::isfinite(p.x))
       list->push_back(p);
-  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  seg.setInputCloud(list);
-  seg.setNumberOfThreads(2);
-  std::vector<pcl::PointIndices> merged, unmerged;
-  seg.extract(merged);
-  seg.setRimMerge(0.0);
-  seg.extract(unmerged);
+  const auto [merged, unmerged] = segmentWithAndWithoutMerge(list);
   std::cout << "[ INFO     ] disc view as a list: " << unmerged.size()
             << " segments without the rim merge, " << merged.size() << " with it\n";
   EXPECT_GT(unmerged.size(), 1u);
@@ -288,13 +291,7 @@ TEST(RimMerge, AListOfAViewsPointsIsOneViewFromTheSensor) {
 TEST(RimMerge, AWholeSurfaceIsNoView) {
   // A closed surface around the sensor origin has no rim: the merge changes nothing.
   const test::LabeledShape hand = test::makeHand(4000, 3);
-  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  seg.setInputCloud(hand.cloud);
-  seg.setNumberOfThreads(2);
-  std::vector<pcl::PointIndices> on, off;
-  seg.extract(on);
-  seg.setRimMerge(0.0);
-  seg.extract(off);
+  const auto [on, off] = segmentWithAndWithoutMerge(hand.cloud);
   ASSERT_EQ(on.size(), off.size());
   for (std::size_t s = 0; s < on.size(); ++s)
     EXPECT_EQ(on[s].indices, off[s].indices);

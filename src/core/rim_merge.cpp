@@ -29,10 +29,11 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
 }
 
 namespace {
+constexpr double kPi = 3.14159265358979323846;
 // The neck (core/short_cut.h) of a limb as long as it is wide, cut at its base: a tube of
 // radius a and length 2a has 2 pi a / sqrt(2 pi a 2a) = sqrt(pi). A piece chipped off at the
 // rim has a wider one (a half disc: sqrt(2 pi)); a limb a narrower one.
-const double kLimbNeck = std::sqrt(3.14159265358979323846);
+const double kLimbNeck = std::sqrt(kPi);
 // Each side of a boundary: its points within this many rings of the other side.
 constexpr int kBandRings = 3;
 
@@ -48,13 +49,19 @@ struct Band {
     normal += o.normal;
     outer += o.outer;
   }
-  /// The least-squares plane: its centre and unit normal, oriented as the points' normals.
+  /// The least-squares plane: its centre and unit normal, oriented as the points' normals;
+  /// false for fewer than 3 points or collinear ones (as denoise.cpp's and concavity.cpp's
+  /// plane fits), whose normal would be any.
   bool plane(Eigen::Vector3d& centre, Eigen::Vector3d& n) const {
     if (count < 3)
       return false;
     centre = sum / count;
-    const Eigen::Matrix3d cov = outer / count - centre * centre.transpose();
-    n = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvectors().col(0);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+    solver.computeDirect(outer / count - centre * centre.transpose());
+    const Eigen::Vector3d& lambda = solver.eigenvalues(); // ascending
+    if (!(lambda[2] > 0.0) || !(lambda[1] > 1e-10 * lambda[2]))
+      return false;
+    n = solver.eigenvectors().col(0).normalized();
     if (n.dot(normal) < 0)
       n = -n;
     return true;
@@ -145,7 +152,7 @@ mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
   const NeckMeasure necks(graph, segment, t);
   std::vector<std::uint32_t> group(t); // per input segment, its merged one (its smallest id)
   std::iota(group.begin(), group.end(), 0u);
-  const double bound = max_degrees * 3.14159265358979323846 / 180.0;
+  const double bound = max_degrees * kPi / 180.0;
   bool merged = false;
   for (;;) {
     std::uint32_t best_a = kNone, best_b = kNone;

@@ -216,9 +216,11 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   duplicates_.clear();
   for (const auto& c : prepared.copies)
     duplicates_.emplace_back(valid[c.first], c.second);
-  if (input_->isOrganized() && input_->width > 2 && input_->height > 2) {
+  // The rim, only for the rim merge (turning it on later makes a new analysis: serves()).
+  const bool organized = input_->isOrganized() && input_->width > 2 && input_->height > 2;
+  if (pcl_ncut_seg::cutNeeds(params_).rim && organized)
     prepared.set.rim = organizedRim();
-  } else { // the core decides whether the points are one view from there
+  if (pcl_ncut_seg::cutNeeds(params_).rim && !organized) { // the core decides: one view?
     std::array<float, 3> origin;
     for (int d = 0; d < 3; ++d)
       origin[d] = static_cast<float>(input_->sensor_origin_[d] - prepared.centroid[d]);
