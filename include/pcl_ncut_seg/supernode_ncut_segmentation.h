@@ -194,6 +194,12 @@ public:
    * \param[in] growth  graph.denoise, > 1; 0: off */
   void setDenoise(double growth);
   double getDenoise() const { return params_.graph.denoise.value_or(0.0); }
+  /** \brief The analysis' resolution (core/subsample.h): a cloud of more distinct points is
+   * analysed on this many of them, a random subset fixed by their positions, and every other
+   * point takes the segment of its nearest analysed point.
+   * \param[in] points  graph.max_points, >= 100; 0: off (every point is analysed) */
+  void setMaxPoints(int points);
+  int getMaxPoints() const { return params_.graph.max_points.value_or(0); }
   /** \param[in] weight  similarity.concavity, > 0; 0: off */
   void setConcavityWeight(double weight);
   double getConcavityWeight() const { return params_.similarity.concavity.value_or(0.0); }

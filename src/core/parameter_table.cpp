@@ -298,6 +298,13 @@ std::vector<ParameterInfo> makeTable() {
           "4), project each point onto its 2-ring's plane first; not in CAD mode",
           false),
       above(1), FIELD(graph.denoise), "off"));
+  t.push_back(number<int, std::optional<int>>(
+      row("max_points", "graph.max_points", S::Graph, K::Integer, "N",
+          "the analysis' resolution: a denser cloud is analysed on N of its points (a random "
+          "subset fixed by their positions, whatever their order) and every other point takes "
+          "the segment of its nearest analysed point",
+          false),
+      atLeast(100), FIELD(graph.max_points), "off"));
   // Centrality (Sec. 4.1)
   t.push_back(number<int, std::optional<int>>(
       row("centrality_samples", "centrality.samples", S::Centrality, K::Integer, "S",

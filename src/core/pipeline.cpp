@@ -7,6 +7,7 @@
 #include <pcl_ncut_seg/core/morton.h>
 #include <pcl_ncut_seg/core/single_view.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
+#include <pcl_ncut_seg/core/subsample.h>
 #include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
@@ -141,6 +142,9 @@ std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n,
   if (n == 0 || !validate(params))
     return {};
   PreparedPoints prepared = preparePoints(std::vector<float>(xyz, xyz + 3 * n));
+  if (params.graph.max_points)
+    subsamplePoints(prepared, static_cast<std::size_t>(*params.graph.max_points),
+                    usableThreads(params.execution.num_threads));
   const std::size_t m = prepared.point.size();
   PointSet& set = prepared.set;
   set.k = std::min<std::size_t>(static_cast<std::size_t>(params.graph.k), m - 1);

@@ -14,6 +14,7 @@
 
 #include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/rim_merge.h>
+#include <pcl_ncut_seg/core/subsample.h>
 #include <pcl_ncut_seg/core/threads.h>
 #include <pcl_ncut_seg/impl/supernode_ncut_segmentation_parameters.hpp>
 
@@ -209,6 +210,9 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     xyz[3 * i + 2] = p.z;
   }
   pcl_ncut_seg::PreparedPoints prepared = pcl_ncut_seg::preparePoints(std::move(xyz));
+  if (params_.graph.max_points) // a dense cloud: analysed at the resolution of max_points
+    pcl_ncut_seg::subsamplePoints(prepared, static_cast<std::size_t>(*params_.graph.max_points),
+                                  pcl_ncut_seg::usableThreads(params_.execution.num_threads));
   const std::size_t n = prepared.point.size();
   point_index_.resize(n);
   for (std::size_t v = 0; v < n; ++v)

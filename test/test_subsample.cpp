@@ -1,0 +1,240 @@
+/*
+ * The analysis' resolution (core/subsample.h, graph.max_points): a dense cloud is analysed on a
+ * subset fixed by the positions, and every other point takes its nearest analysed point's
+ * segment.
+ */
+#include <pcl_ncut_seg/core/pipeline.h>
+#include <pcl_ncut_seg/core/subsample.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <tuple>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+using Position = std::tuple<float, float, float>;
+
+std::vector<float> toArray(const pcl::PointCloud<pcl::PointXYZ>& cloud) {
+  std::vector<float> xyz;
+  for (const auto& p : cloud)
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  return xyz;
+}
+
+Position at(const std::vector<float>& xyz, std::size_t i) {
+  return {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+}
+
+/// The indices of the max_points points with the smallest positionHash(), found by sorting.
+std::vector<std::size_t> smallestHashes(const std::vector<float>& xyz, std::size_t max_points) {
+  std::vector<std::size_t> ids(xyz.size() / 3);
+  std::iota(ids.begin(), ids.end(), 0);
+  std::sort(ids.begin(), ids.end(), [&](std::size_t a, std::size_t b) {
+    return positionHash(&xyz[3 * a]) < positionHash(&xyz[3 * b]);
+  });
+  ids.resize(max_points);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+double squaredDistance(const std::vector<float>& xyz, std::size_t a, std::size_t b) {
+  double s = 0;
+  for (int d = 0; d < 3; ++d)
+    s += (xyz[3 * a + d] - xyz[3 * b + d]) * double(xyz[3 * a + d] - xyz[3 * b + d]);
+  return s;
+}
+
+} // namespace
+
+TEST(Subsample, PositionHashIsAFunctionOfThePositionAlone) {
+  const float a[3] = {0.0f, 1.5f, -2.0f}, minus_zero[3] = {-0.0f, 1.5f, -2.0f};
+  const float b[3] = {1.5f, 0.0f, -2.0f}, c[3] = {0.0f, 1.5f, std::nextafter(-2.0f, 0.0f)};
+  EXPECT_EQ(positionHash(a), positionHash(minus_zero));
+  EXPECT_NE(positionHash(a), positionHash(b)); // the axes are not interchangeable
+  EXPECT_NE(positionHash(a), positionHash(c)); // one ulp apart
+}
+
+TEST(Subsample, NothingHappensAtOrBelowTheResolution) {
+  const auto shape = test::makeDumbbell(800, 3);
+  PreparedPoints prepared = preparePoints(toArray(*shape.cloud));
+  const auto before = prepared.set.xyz;
+  EXPECT_EQ(subsamplePoints(prepared, 800, 1), 0u);
+  EXPECT_EQ(subsamplePoints(prepared, 5000, 1), 0u);
+  EXPECT_EQ(prepared.set.xyz, before);
+  EXPECT_TRUE(prepared.copies.empty());
+}
+
+TEST(Subsample, KeepsTheSmallestHashesAndGivesEveryOtherPointItsNearestKeptPoint) {
+  const auto shape = test::makeHand(3000, 7);
+  std::vector<float> xyz = toArray(*shape.cloud);
+  const std::size_t n = xyz.size() / 3;
+  // Two copies of point 5, to check that copies of a dropped point follow it.
+  xyz.insert(xyz.end(), {xyz[15], xyz[16], xyz[17]});
+  const std::size_t max_points = 700;
+  PreparedPoints prepared = preparePoints(xyz);
+  ASSERT_EQ(prepared.point.size(), n);
+  ASSERT_EQ(subsamplePoints(prepared, max_points, 2), n - max_points);
+  ASSERT_EQ(prepared.point.size(), max_points);
+  ASSERT_EQ(prepared.set.xyz.size(), 3 * max_points);
+  ASSERT_EQ(prepared.raw.size(), 3 * max_points);
+
+  // The kept points are the smallest hashes; their raw positions are the input's.
+  const std::vector<std::size_t> expected = smallestHashes(
+      std::vector<float>(xyz.begin(), xyz.begin() + 3 * static_cast<std::ptrdiff_t>(n)),
+      max_points);
+  std::vector<std::size_t> kept(prepared.point.begin(), prepared.point.end());
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(kept, expected);
+  for (std::size_t v = 0; v < max_points; ++v)
+    EXPECT_EQ(at(prepared.raw, v), at(xyz, prepared.point[v]));
+
+  // Every input point is a kept vertex or a copy of one, once; a dropped point's vertex is its
+  // nearest kept point.
+  std::vector<int> seen(n + 1, 0);
+  for (std::size_t v = 0; v < max_points; ++v)
+    ++seen[prepared.point[v]];
+  for (const auto& [copy, vertex] : prepared.copies) {
+    ASSERT_LT(vertex, max_points);
+    ++seen[copy];
+    double best = 1e300;
+    for (std::size_t w = 0; w < max_points; ++w) {
+      double s = 0;
+      for (int d = 0; d < 3; ++d)
+        s += (prepared.raw[3 * w + d] - xyz[3 * copy + d]) *
+             double(prepared.raw[3 * w + d] - xyz[3 * copy + d]);
+      best = std::min(best, s);
+    }
+    double mine = 0;
+    for (int d = 0; d < 3; ++d)
+      mine += (prepared.raw[3 * vertex + d] - xyz[3 * copy + d]) *
+              double(prepared.raw[3 * vertex + d] - xyz[3 * copy + d]);
+    EXPECT_EQ(mine, best) << "point " << copy;
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+
+  // The ranks are dense and keep the input's order; the points are centred on their centroid.
+  std::vector<std::uint32_t> ranks = prepared.set.order;
+  std::sort(ranks.begin(), ranks.end());
+  for (std::size_t r = 0; r < max_points; ++r)
+    ASSERT_EQ(ranks[r], r);
+  for (std::size_t v = 0; v + 1 < max_points; ++v)
+    for (std::size_t w = v + 1; w < std::min(max_points, v + 20); ++w)
+      EXPECT_EQ(prepared.set.order[v] < prepared.set.order[w],
+                prepared.point[v] < prepared.point[w]);
+  for (int d = 0; d < 3; ++d) {
+    double mean = 0;
+    for (std::size_t v = 0; v < max_points; ++v)
+      mean += prepared.set.xyz[3 * v + d];
+    EXPECT_NEAR(mean / max_points, 0.0, 1e-5);
+  }
+}
+
+TEST(Subsample, TheSubsetDoesNotDependOnTheOrderOfThePoints) {
+  const auto shape = test::makeQuadruped(2500, 2);
+  const std::vector<float> xyz = toArray(*shape.cloud);
+  const std::size_t n = xyz.size() / 3;
+  std::vector<std::size_t> perm(n);
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937_64(11));
+  std::vector<float> shuffled;
+  for (std::size_t i : perm)
+    shuffled.insert(shuffled.end(), {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+  auto keptPositions = [](const std::vector<float>& points) {
+    PreparedPoints prepared = preparePoints(points);
+    subsamplePoints(prepared, 900, 1);
+    std::set<Position> kept;
+    for (std::size_t v = 0; v < prepared.point.size(); ++v)
+      kept.insert(at(prepared.raw, v));
+    return kept;
+  };
+  const auto a = keptPositions(xyz), b = keptPositions(shuffled);
+  EXPECT_EQ(a.size(), 900u);
+  EXPECT_EQ(a, b);
+}
+
+TEST(Subsample, ADenseCloudIsSegmentedAsItsSubsetWithTheOthersTakingTheNearestLabel) {
+  const auto shape = test::makeHand(6000, 4);
+  const std::vector<float> xyz = toArray(*shape.cloud);
+  const std::size_t n = xyz.size() / 3, max_points = 2000;
+  Parameters params;
+  params.graph.max_points = static_cast<int>(max_points);
+  const std::vector<std::uint32_t> dense = segmentPoints(xyz.data(), n, params);
+  ASSERT_EQ(dense.size(), n);
+
+  const std::vector<std::size_t> kept = smallestHashes(xyz, max_points);
+  std::vector<float> subset;
+  for (std::size_t i : kept)
+    subset.insert(subset.end(), {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
+  params.graph.max_points.reset();
+  const std::vector<std::uint32_t> alone = segmentPoints(subset.data(), max_points, params);
+  ASSERT_EQ(alone.size(), max_points);
+  EXPECT_GE(*std::max_element(alone.begin(), alone.end()), 3u); // the hand has parts
+  // The same partition of the kept points (numbering may differ: the dense cloud's first
+  // point of a segment can be a dropped one).
+  std::map<std::uint32_t, std::uint32_t> dense_to_alone;
+  for (std::size_t j = 0; j < max_points; ++j) {
+    const auto [it, inserted] = dense_to_alone.emplace(dense[kept[j]], alone[j]);
+    EXPECT_EQ(it->second, alone[j]) << "kept point " << kept[j];
+  }
+  std::set<std::uint32_t> images;
+  for (const auto& m : dense_to_alone)
+    images.insert(m.second);
+  EXPECT_EQ(images.size(), dense_to_alone.size());
+  // Every other point carries the label of its nearest kept point.
+  std::vector<char> is_kept(n, 0);
+  for (std::size_t i : kept)
+    is_kept[i] = 1;
+  for (std::size_t i = 0; i < n; i += 7) {
+    if (is_kept[i])
+      continue;
+    std::size_t nearest = kept[0];
+    for (std::size_t j : kept)
+      if (squaredDistance(xyz, i, j) < squaredDistance(xyz, i, nearest))
+        nearest = j;
+    EXPECT_EQ(dense[i], dense[nearest]) << "point " << i;
+  }
+}
+
+TEST(Subsample, ThePclClassAnalysesAtMostMaxPointsAndLabelsEveryPoint) {
+  const auto shape = test::makeQuadruped(5000, 9);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_EQ(seg.getMaxPoints(), 50000); // the default
+  seg.setMaxPoints(1500);
+  seg.setNumberOfThreads(1);
+  seg.setInputCloud(shape.cloud);
+  std::vector<pcl::PointIndices> one;
+  seg.extract(one);
+  ASSERT_FALSE(one.empty());
+  EXPECT_GT(seg.getNumberOfSupernodes(false), 0u);
+  std::size_t labelled = 0;
+  for (const auto& s : one)
+    labelled += s.indices.size();
+  EXPECT_EQ(labelled, shape.cloud->size());
+
+  seg.setNumberOfThreads(2); // the same labels on two threads
+  std::vector<pcl::PointIndices> two;
+  seg.extract(two);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t s = 0; s < one.size(); ++s)
+    EXPECT_EQ(one[s].indices, two[s].indices);
+}
+
+TEST(Subsample, TheSetterKeepsItsOldValueOnABadOne) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setMaxPoints(20000);
+  for (int bad : {-1, 1, 99})
+    seg.setMaxPoints(bad);
+  EXPECT_EQ(seg.getMaxPoints(), 20000);
+  seg.setMaxPoints(0); // off: every point
+  EXPECT_EQ(seg.getMaxPoints(), 0);
+}
