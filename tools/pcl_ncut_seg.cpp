@@ -312,7 +312,7 @@ void printReport(const Segmenter& seg, std::size_t num_segments) {
     const char* name;
     std::size_t count;
     const char* what;
-  } counts[] = {{"n", seg.getAnalysedIndices().size(), "points segmented"},
+  } counts[] = {{"n", seg.getAnalysedIndices().size(), "points analysed"},
                 {"m", seg.getNumberOfSupernodes(false), "supernodes"},
                 {"l", seg.getNumberOfSupernodes(true), "supernodes after refinement"},
                 {"t", num_segments, "segments"}};

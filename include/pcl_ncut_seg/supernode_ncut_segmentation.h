@@ -287,7 +287,8 @@ public:
   /** \brief The whole expensive stage, or nullptr. */
   const pcl_ncut_seg::Analysis* getAnalysis() const { return analysis_.get(); }
   /** \brief Input index of each analysed point (the graph's vertex order). A point at exactly
-   * the position of an earlier one is not analysed; it shares that point's results. */
+   * the position of an earlier one is not analysed; it shares that point's results. Nor is a
+   * point left out by setMaxPoints(); it shares its nearest analysed point's segment. */
   const std::vector<int>& getAnalysedIndices() const { return point_index_; }
   /// \}
 
