@@ -21,25 +21,9 @@ std::uint64_t mix(std::uint64_t z) { // splitmix64's finaliser
   return z ^ (z >> 31);
 }
 
-} // namespace
-
-std::uint64_t positionHash(const float* xyz) {
-  std::uint64_t h = 0x9E3779B97F4A7C15ull;
-  for (int d = 0; d < 3; ++d) {
-    const float v = xyz[d] == 0.0f ? 0.0f : xyz[d]; // -0 and +0 are one position
-    std::uint32_t bits;
-    std::memcpy(&bits, &v, sizeof bits);
-    h = mix(h ^ (bits + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(d + 1)));
-  }
-  return h;
-}
-
-std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, int num_threads) {
-  const std::size_t m = prepared.point.size();
-  if (max_points == 0 || m <= max_points)
-    return 0;
-  const float* raw = prepared.raw.data();
-  // The max_points smallest (hash, position): a random subset fixed by the positions alone.
+/// Per point, 1 for the max_points with the smallest (positionHash(), position): a random subset
+/// fixed by the positions alone.
+std::vector<char> smallestHashes(const float* raw, std::size_t m, std::size_t max_points) {
   std::vector<std::uint64_t> hash(m);
   for (std::size_t v = 0; v < m; ++v)
     hash[v] = positionHash(raw + 3 * v);
@@ -55,22 +39,17 @@ std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, in
   std::vector<char> keep(m, 0);
   for (std::size_t i = 0; i < max_points; ++i)
     keep[by_hash[i]] = 1;
-  std::vector<std::uint32_t>().swap(by_hash);
-  std::vector<std::uint64_t>().swap(hash);
+  return keep;
+}
 
-  // Kept vertices, renumbered in their Morton order.
-  std::vector<std::uint32_t> new_id(m, kNone);
-  std::vector<float> kept_raw;
-  kept_raw.reserve(3 * max_points);
-  std::uint32_t next = 0;
-  for (std::size_t v = 0; v < m; ++v)
-    if (keep[v]) {
-      new_id[v] = next++;
-      kept_raw.insert(kept_raw.end(), raw + 3 * v, raw + 3 * v + 3);
-    }
-  // Every dropped vertex's nearest kept point (FLANN's exact single kd-tree, as knn.cpp).
+/// Per point, the new id of its nearest kept point (its own for a kept one), by FLANN's exact
+/// single kd-tree over the kept points (as knn.cpp); the same for any number of threads.
+std::vector<std::uint32_t> nearestKept(const float* raw, std::size_t m,
+                                       const std::vector<char>& keep,
+                                       const std::vector<std::uint32_t>& new_id,
+                                       std::vector<float>& kept_raw, int num_threads) {
   using Index = flann::KDTreeSingleIndex<flann::L2_Simple<float>>;
-  Index index(flann::Matrix<float>(kept_raw.data(), max_points, 3),
+  Index index(flann::Matrix<float>(kept_raw.data(), kept_raw.size() / 3, 3),
               flann::KDTreeSingleIndexParams(15));
   index.buildIndex();
   const flann::SearchParams search(-1, 0.0f, true);
@@ -93,6 +72,41 @@ std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, in
       nearest[v] = static_cast<std::uint32_t>(id);
     }
   }
+  return nearest;
+}
+
+} // namespace
+
+std::uint64_t positionHash(const float* xyz) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ull;
+  for (int d = 0; d < 3; ++d) {
+    const float v = xyz[d] == 0.0f ? 0.0f : xyz[d]; // -0 and +0 are one position
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    h = mix(h ^ (bits + 0x9E3779B97F4A7C15ull * static_cast<std::uint64_t>(d + 1)));
+  }
+  return h;
+}
+
+std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, int num_threads) {
+  const std::size_t m = prepared.point.size();
+  if (max_points == 0 || m <= max_points)
+    return 0;
+  const float* raw = prepared.raw.data();
+  const std::vector<char> keep = smallestHashes(raw, m, max_points);
+
+  // Kept vertices, renumbered in their Morton order.
+  std::vector<std::uint32_t> new_id(m, kNone);
+  std::vector<float> kept_raw;
+  kept_raw.reserve(3 * max_points);
+  std::uint32_t next = 0;
+  for (std::size_t v = 0; v < m; ++v)
+    if (keep[v]) {
+      new_id[v] = next++;
+      kept_raw.insert(kept_raw.end(), raw + 3 * v, raw + 3 * v + 3);
+    }
+  const std::vector<std::uint32_t> nearest =
+      nearestKept(raw, m, keep, new_id, kept_raw, num_threads);
   // Copies of any vertex follow it to its nearest kept point; dropped vertices become copies.
   for (auto& copy : prepared.copies)
     copy.second = nearest[copy.second];
@@ -114,17 +128,7 @@ std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, in
   }
   prepared.raw.resize(3 * w);
   prepared.raw.shrink_to_fit();
-  // Centred on the kept points' centroid, as preparePoints() would centre them alone.
-  double c[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < w; ++i)
-    for (int d = 0; d < 3; ++d)
-      c[d] += prepared.raw[3 * i + d];
-  for (int d = 0; d < 3; ++d)
-    prepared.centroid[d] = c[d] / static_cast<double>(w);
-  set.xyz.resize(3 * w);
-  set.xyz.shrink_to_fit();
-  for (std::size_t i = 0; i < 3 * w; ++i)
-    set.xyz[i] = static_cast<float>(prepared.raw[i] - prepared.centroid[i % 3]);
+  centrePoints(prepared); // as preparePoints() centres the kept points alone
   prepared.point.resize(w);
   if (!set.order.empty()) { // dense ranks again, in the same order
     set.order.resize(w);

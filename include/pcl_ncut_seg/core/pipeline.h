@@ -129,6 +129,10 @@ struct PreparedPoints {
   double centroid[3] = {0, 0, 0}; ///< set.xyz = raw - centroid
 };
 
+/** \brief Set set.xyz to raw relative to the centroid of raw (summed in double, so that a model
+ * far from the origin keeps its float precision), and centroid to it. */
+void centrePoints(PreparedPoints& prepared);
+
 /** \brief Order, deduplicate and centre points (3 floats each, finite). The centroid is
  * taken in double, so that a model far from the origin keeps its float precision.
  * \param[in] xyz  consumed (freed before the centred copy is made) */
