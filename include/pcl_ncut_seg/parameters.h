@@ -72,7 +72,7 @@ struct GraphParams {
   std::optional<double> denoise = 2.0;
   /// Extension (core/subsample.h): a denser cloud is analysed on this many of its points, and
   /// every other point takes the segment of its nearest analysed point. Off: every point.
-  std::optional<int> max_points = 50000;
+  std::optional<int> max_points = 60000;
 };
 
 /** \brief Sec. 4.1: the centrality f of eq. (1). */

@@ -300,9 +300,9 @@ std::vector<ParameterInfo> makeTable() {
       above(1), FIELD(graph.denoise), "off"));
   t.push_back(number<int, std::optional<int>>(
       row("max_points", "graph.max_points", S::Graph, K::Integer, "N",
-          "the analysis' resolution: a denser cloud is analysed on N of its points (a random "
-          "subset fixed by their positions, whatever their order) and every other point takes "
-          "the segment of its nearest analysed point",
+          "the analysis' resolution: a denser cloud is analysed on at most N of its points (the "
+          "point nearest the centre of each cube of a grid; the same whatever their order) and "
+          "every other point takes the segment of its nearest analysed point",
           false),
       atLeast(100), FIELD(graph.max_points), "off"));
   // Centrality (Sec. 4.1)
