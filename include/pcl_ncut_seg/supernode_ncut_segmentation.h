@@ -195,8 +195,8 @@ public:
   void setDenoise(double growth);
   double getDenoise() const { return params_.graph.denoise.value_or(0.0); }
   /** \brief The analysis' resolution (core/subsample.h): a cloud of more distinct points is
-   * analysed on this many of them, a random subset fixed by their positions, and every other
-   * point takes the segment of its nearest analysed point.
+   * analysed on an even subset of at most this many (one per cube of a grid, whatever their
+   * order), and every other point takes the segment of its nearest analysed point.
    * \param[in] points  graph.max_points, >= 100; 0: off (every point is analysed) */
   void setMaxPoints(int points);
   int getMaxPoints() const { return params_.graph.max_points.value_or(0); }
