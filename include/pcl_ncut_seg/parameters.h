@@ -70,8 +70,9 @@ struct GraphParams {
   /// below this bound (noise, not curvature, scatters them), each point is projected onto the
   /// plane of its 2-ring before anything is measured; nullopt: never. Not in CAD mode.
   std::optional<double> denoise = 2.0;
-  /// Extension (core/subsample.h): a denser cloud is analysed on this many of its points, and
-  /// every other point takes the segment of its nearest analysed point. Off: every point.
+  /// Extension (core/subsample.h): a denser cloud is analysed on an even subset of at most this
+  /// many of its points (one per cube of a grid), and every other point takes the segment of its
+  /// nearest analysed point. Off: every point.
   std::optional<int> max_points = 60000;
 };
 
