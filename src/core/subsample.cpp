@@ -72,10 +72,13 @@ struct CubeGrid {
   }
 };
 
-std::size_t occupiedCubes(const float* raw, std::size_t m, const CubeGrid& grid) {
+/// Per point, its cube's number (numbered as first met); returns the number of cubes.
+std::size_t occupiedCubes(const float* raw, std::size_t m, const CubeGrid& grid,
+                          std::vector<std::uint32_t>& cube) {
   CubeTable table(m);
+  cube.resize(m);
   for (std::size_t v = 0; v < m; ++v)
-    table.slot(grid.key(raw + 3 * v));
+    cube[v] = table.slot(grid.key(raw + 3 * v));
   return table.count();
 }
 
@@ -104,23 +107,23 @@ std::vector<char> evenSubset(const float* raw, std::size_t m, std::size_t max_po
   // needs more than 21 bits.
   const double min_edge = std::max(extent / double((1u << 21) - 2), 1e-30);
   grid.edge = std::max(std::sqrt(diagonal / static_cast<double>(max_points)), min_edge);
-  std::size_t cubes = occupiedCubes(raw, m, grid);
+  std::vector<std::uint32_t> cube; // per point, its cube under the current edge
+  std::size_t cubes = occupiedCubes(raw, m, grid, cube);
   for (int step = 0; step < 8 && (cubes > max_points || cubes < 0.97 * max_points); ++step) {
     if (cubes < max_points && grid.edge <= min_edge)
       break;
     grid.edge = std::max(grid.edge * std::sqrt(double(cubes) / double(max_points)), min_edge);
-    cubes = occupiedCubes(raw, m, grid);
+    cubes = occupiedCubes(raw, m, grid, cube);
   }
   while (cubes > max_points) {
     grid.edge *= 1.01;
-    cubes = occupiedCubes(raw, m, grid);
+    cubes = occupiedCubes(raw, m, grid, cube);
   }
   // In each cube, the point nearest its centre (ties by position: no order matters).
-  CubeTable table(m);
   std::vector<std::uint32_t> best(cubes, kNone);
   std::vector<double> best_distance(cubes, 0.0);
   for (std::size_t v = 0; v < m; ++v) {
-    const std::uint32_t c = table.slot(grid.key(raw + 3 * v));
+    const std::uint32_t c = cube[v];
     const double distance = grid.toCentre(raw + 3 * v);
     const std::uint32_t b = best[c];
     if (b == kNone || distance < best_distance[c] ||
