@@ -161,6 +161,12 @@ struct BoundaryParams {
   /// each) meet at a concave angle below this many degrees (PCL's LCCP calls 10 degrees
   /// convex) and the boundary is no limb's neck. Off: the paper.
   std::optional<double> rim_merge = 10.0;
+  /// Extension (core/small_segments.h), open views only: a segment whose area is below this
+  /// fraction of the object's area joins the touching segment it shares most kNN edges with
+  /// (the paper's "small", footnote 4, for the pieces a view leaves of a part). A view shows at
+  /// most half of a closed surface, so the object's area is taken as twice the view's. Off:
+  /// the paper.
+  std::optional<double> view_small_segment = 0.01;
 };
 
 /** \brief How the work runs; the result never depends on it. */

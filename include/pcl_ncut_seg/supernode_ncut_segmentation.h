@@ -219,6 +219,12 @@ public:
    * \param[in] degrees  boundary.rim_merge, in (0, 180]; 0: off */
   void setRimMerge(double degrees);
   double getRimMerge() const { return params_.boundary.rim_merge.value_or(0.0); }
+  /** \brief Open views (core/small_segments.h): a segment whose area is below this fraction
+   * of the object's area (taken as twice the view's) joins the touching segment it shares
+   * most kNN edges with.
+   * \param[in] fraction  boundary.view_small_segment, in (0, 0.5]; 0: off */
+  void setViewSmallSegment(double fraction);
+  double getViewSmallSegment() const { return params_.boundary.view_small_segment.value_or(0.0); }
   /** \param[in] concavity  refinement.crease_split, > 0; 0: off */
   void setCreaseSplit(double concavity);
   double getCreaseSplit() const { return params_.refinement.crease_split.value_or(0.0); }

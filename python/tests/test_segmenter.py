@@ -18,6 +18,7 @@ OTHER = {
     "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
     "splits": 50, "min_segment_fraction": 0.1, "max_segments": 4, "gap_floor": 0.01,
     "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
+    "view_small_segment": 0.02,
     "threads": 1,
 }
 

@@ -2,8 +2,10 @@
 
 #include <pcl_ncut_seg/core/boundary_refinement.h>
 #include <pcl_ncut_seg/core/cad.h>
+#include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/short_cut.h>
+#include <pcl_ncut_seg/core/small_segments.h>
 
 #include <algorithm>
 #include <limits>
@@ -72,6 +74,23 @@ void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
     return;
   const std::vector<std::uint32_t> map = mergeAcrossRim(
       a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, r.point_segment, r.num_segments);
+  for (auto& s : r.supernode_segment)
+    if (s < map.size())
+      s = map[s];
+}
+
+void viewSmallSegmentStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
+  if (a.cad || !params.view_small_segment || a.rim.empty())
+    return;
+  std::vector<double> area(a.radii.size());
+  double total = 0.0;
+  for (std::size_t p = 0; p < area.size(); ++p)
+    total += area[p] = pointArea(a.radii[p]);
+  // A view shows at most half of a closed surface: the object's area is at least twice the
+  // view's, and the paper's small is a fraction of the object's.
+  const double min_area = *params.view_small_segment * 2.0 * total;
+  const std::vector<std::uint32_t> map =
+      joinSmallSegments(a.graph, area, min_area, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];

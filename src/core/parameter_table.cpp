@@ -509,6 +509,13 @@ std::vector<ParameterInfo> makeTable() {
           "at least sqrt(pi) (no limb's); not in CAD mode",
           false),
       leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("view_small_segment", "boundary.view_small_segment", S::Boundary, K::Real, "F",
+          "open views (as rim_merge): a segment whose area is below F of the object's (taken "
+          "as twice the view's: a view shows at most half of a closed surface) joins the "
+          "touching segment it shares most kNN edges with; not in CAD mode",
+          false),
+      leftOpen(0, 0.5), FIELD(boundary.view_small_segment), "off"));
   // Execution
   t.push_back(number<unsigned, unsigned>(
       row("threads", "execution.num_threads", S::Execution, K::Integer, "N",

@@ -43,6 +43,7 @@ Parameters Parameters::paper() {
   p.stopping.min_segment_fraction.reset();
   p.boundary.band.reset();
   p.boundary.rim_merge.reset();
+  p.boundary.view_small_segment.reset();
   return p;
 }
 

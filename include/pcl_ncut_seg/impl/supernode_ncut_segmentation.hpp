@@ -220,7 +220,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   duplicates_.clear();
   for (const auto& c : prepared.copies)
     duplicates_.emplace_back(valid[c.first], c.second);
-  // The rim, only for the rim merge (turning it on later makes a new analysis: serves()).
+  // The rim, only for the open-view stages (turning one on later makes a new analysis:
+  // serves()).
   const bool organized = input_->isOrganized() && input_->width > 2 && input_->height > 2;
   if (pcl_ncut_seg::cutNeeds(params_).rim && organized)
     prepared.set.rim = organizedRim();

@@ -87,6 +87,8 @@ PCL_NCUT_SEG_SETTER(setNeckBound, double, p.stopping.neck_bound = value)
 PCL_NCUT_SEG_SETTER(setBoundaryBand, double, p.boundary.band = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setBoundaryCreaseWeight, double, p.boundary.crease_weight = value)
 PCL_NCUT_SEG_SETTER(setRimMerge, double, p.boundary.rim_merge = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setViewSmallSegment, double,
+                    p.boundary.view_small_segment = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setNumberOfThreads, unsigned, p.execution.num_threads = value)
 
 #undef PCL_NCUT_SEG_SETTER

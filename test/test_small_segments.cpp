@@ -1,0 +1,233 @@
+/*
+ * Open views: small segments joined to their neighbours (core/small_segments.h,
+ * SupernodeNCutSegmentation::setViewSmallSegment).
+ */
+#include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/small_segments.h>
+#include <pcl_ncut_seg/core/supernodes.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/knn_graph.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <random>
+#include <set>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+constexpr std::size_t kW = 40, kH = 30;
+
+/// A flat sheet of kW x kH points on a unit grid, row by row, and its kNN graph.
+struct Sheet {
+  std::vector<float> xyz;
+  CsrGraph graph;
+  std::vector<double> area; // one unit per point
+  Sheet() {
+    for (std::size_t y = 0; y < kH; ++y)
+      for (std::size_t x = 0; x < kW; ++x)
+        xyz.insert(xyz.end(), {static_cast<float>(x), static_cast<float>(y), 0.0f});
+    graph = test::kdTreeKnnGraph(xyz, 8);
+    area.assign(kW * kH, 1.0);
+  }
+};
+
+/// Segment 0 left of x = 20, 1 right of it, and `id` on the box [x0, x1] x [y0, y1].
+std::vector<std::uint32_t> halvesWithBox(std::size_t x0, std::size_t x1, std::size_t y0,
+                                         std::size_t y1, std::uint32_t id) {
+  std::vector<std::uint32_t> segment(kW * kH);
+  for (std::size_t y = 0; y < kH; ++y)
+    for (std::size_t x = 0; x < kW; ++x)
+      segment[y * kW + x] = (x >= x0 && x <= x1 && y >= y0 && y <= y1) ? id : (x < 20 ? 0u : 1u);
+  return segment;
+}
+
+} // namespace
+
+TEST(JoinSmallSegments, ASmallPieceJoinsTheNeighbourItSharesMostEdgesWith) {
+  const Sheet s;
+  // A 3 x 3 piece on the left half, touching the right half along one side only.
+  std::vector<std::uint32_t> segment = halvesWithBox(17, 19, 10, 12, 2);
+  std::size_t t = 3;
+  const std::vector<std::uint32_t> map = joinSmallSegments(s.graph, s.area, 20.0, segment, t);
+  ASSERT_EQ(map.size(), 3u);
+  EXPECT_EQ(map[0], 0u);
+  EXPECT_EQ(map[1], 1u);
+  EXPECT_EQ(map[2], 0u);
+  EXPECT_EQ(t, 2u);
+  EXPECT_EQ(segment, halvesWithBox(17, 19, 10, 12, 0));
+  // Moved across, the piece touches the right half more: it joins that one.
+  segment = halvesWithBox(20, 22, 10, 12, 2);
+  t = 3;
+  joinSmallSegments(s.graph, s.area, 20.0, segment, t);
+  EXPECT_EQ(t, 2u);
+  EXPECT_EQ(segment, halvesWithBox(20, 22, 10, 12, 1));
+}
+
+TEST(JoinSmallSegments, TheSmallestJoinsFirstAndTheJoinedOneIsMeasuredAgain) {
+  const Sheet s;
+  // Two pieces inside the left half, side by side: a (2 x 3 = 6 points) and b (4 x 3 = 12
+  // points), each below 15; a touches b along 3 points and the left half along 7.
+  std::vector<std::uint32_t> segment = halvesWithBox(5, 10, 10, 12, 3);
+  for (std::size_t y = 10; y <= 12; ++y)
+    for (std::size_t x = 5; x <= 6; ++x)
+      segment[y * kW + x] = 2;
+  std::size_t t = 4;
+  const std::vector<std::uint32_t> map = joinSmallSegments(s.graph, s.area, 15.0, segment, t);
+  ASSERT_EQ(map.size(), 4u);
+  // a, the smallest, joins first: the left half, which holds most of its edges. Then b is
+  // still small and joins the left half too.
+  EXPECT_EQ(map[2], 0u);
+  EXPECT_EQ(map[3], 0u);
+  EXPECT_EQ(t, 2u);
+  // With a bound of 7, a joins (6 < 7) and b (12) is not small.
+  segment = halvesWithBox(5, 10, 10, 12, 3);
+  for (std::size_t y = 10; y <= 12; ++y)
+    for (std::size_t x = 5; x <= 6; ++x)
+      segment[y * kW + x] = 2;
+  t = 4;
+  const std::vector<std::uint32_t> map7 = joinSmallSegments(s.graph, s.area, 7.0, segment, t);
+  ASSERT_EQ(map7.size(), 4u);
+  EXPECT_EQ(t, 3u);
+  EXPECT_EQ(map7[0], map7[2]);
+  EXPECT_NE(map7[3], map7[0]);
+  EXPECT_NE(map7[3], map7[1]);
+}
+
+TEST(JoinSmallSegments, AnIslandStaysAndNothingSmallChangesNothing) {
+  // Two sheets far apart: the small one touches nothing, so it stays.
+  Sheet s;
+  std::vector<float> xyz = s.xyz;
+  for (std::size_t y = 0; y < 3; ++y)
+    for (std::size_t x = 0; x < 3; ++x)
+      xyz.insert(xyz.end(), {static_cast<float>(x), static_cast<float>(y), 100.0f});
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 8);
+  std::vector<std::uint32_t> segment(kW * kH, 0);
+  for (std::size_t i = 0; i < kW * kH; ++i)
+    segment[i] = (i % kW) < 20 ? 0u : 1u;
+  segment.resize(kW * kH + 9, 2);
+  const std::vector<std::uint32_t> before = segment;
+  std::size_t t = 3;
+  const std::vector<double> area(segment.size(), 1.0);
+  EXPECT_TRUE(joinSmallSegments(graph, area, 20.0, segment, t).empty());
+  EXPECT_EQ(segment, before);
+  EXPECT_EQ(t, 3u);
+  // No segment small: nothing changes.
+  EXPECT_TRUE(joinSmallSegments(graph, area, 5.0, segment, t).empty());
+  EXPECT_EQ(segment, before);
+  // Sizes that do not match the graph: nothing changes, no crash.
+  EXPECT_TRUE(joinSmallSegments(graph, std::vector<double>(3, 1.0), 1e9, segment, t).empty());
+  EXPECT_TRUE(joinSmallSegments(s.graph, area, 1e9, segment, t).empty());
+  EXPECT_EQ(segment, before);
+  EXPECT_EQ(t, 3u);
+}
+
+namespace {
+
+/// What a depth camera sees of a tilted disc with a small bump on it: an organized 160 x 120
+/// cloud, NaN off the disc, with small range noise.
+pcl::PointCloud<pcl::PointXYZ>::Ptr bumpyDiscView() {
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(160, 120);
+  std::mt19937_64 rng(11);
+  std::normal_distribution<float> noise(0.0f, 0.0005f);
+  const float f = 150.0f, nan = std::numeric_limits<float>::quiet_NaN();
+  for (int row = 0; row < 120; ++row)
+    for (int col = 0; col < 160; ++col) {
+      const float u = (col - 80 + 0.5f) / f, v = (row - 60 + 0.5f) / f;
+      float z = 1.0f / (1.0f - 0.3f * v);
+      pcl::PointXYZ& p = (*cloud)(col, row);
+      if (std::hypot(u * z, v * z) > 0.25f) {
+        p.x = p.y = p.z = nan;
+        continue;
+      }
+      const float r = std::hypot(u * z - 0.1f, v * z);
+      if (r < 0.03f) // a bump 2 cm high towards the camera
+        z -= 0.02f * std::cos(0.5f * 3.14159265f * r / 0.03f);
+      const float zn = z + noise(rng);
+      p.x = u * zn;
+      p.y = v * zn;
+      p.z = zn;
+    }
+  cloud->is_dense = false;
+  return cloud;
+}
+
+std::vector<pcl::PointIndices> segmentView(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
+                                           double rim_merge, double small) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfThreads(2);
+  seg.setRimMerge(rim_merge);
+  seg.setViewSmallSegment(small);
+  std::vector<pcl::PointIndices> out;
+  seg.extract(out);
+  return out;
+}
+
+} // namespace
+
+TEST(ViewSmallSegment, JoinsOnlyWholeSegmentsAndLeavesNoSmallOneInAView) {
+  const auto cloud = bumpyDiscView();
+  std::size_t valid = 0;
+  for (const auto& p : *cloud)
+    valid += std::isfinite(p.x);
+  // Without the rim merge the view's rim and the bump cut the disc into pieces.
+  const std::vector<pcl::PointIndices> off = segmentView(cloud, 0.0, 0.0);
+  const std::vector<pcl::PointIndices> on = segmentView(cloud, 0.0, 0.05);
+  std::cout << "[ INFO     ] bumpy disc view: " << off.size() << " segments, " << on.size()
+            << " with small segments (below 10% of the view) joined\n";
+  ASSERT_GT(off.size(), on.size());
+  // Whole segments join: each segment without the stage lies in one segment with it.
+  std::vector<int> owner(cloud->size(), -1);
+  for (std::size_t s = 0; s < on.size(); ++s)
+    for (int i : on[s].indices)
+      owner[i] = static_cast<int>(s);
+  for (const auto& piece : off) {
+    std::set<int> owners;
+    for (int i : piece.indices)
+      owners.insert(owner[i]);
+    EXPECT_EQ(owners.size(), 1u);
+    EXPECT_NE(*owners.begin(), -1);
+  }
+  // The points on the disc are evenly spaced in the image: a segment of fewer than half of
+  // 10% of them (the area bound, with margin for the points' uneven spacing) is small.
+  for (const auto& s : on)
+    EXPECT_GE(s.indices.size(), valid / 20);
+}
+
+TEST(ViewSmallSegment, AWholeSurfaceIsNoView) {
+  const test::LabeledShape hand = test::makeHand(4000, 3);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(hand.cloud);
+  seg.setNumberOfThreads(2);
+  std::vector<pcl::PointIndices> on, off;
+  seg.setViewSmallSegment(0.2);
+  seg.extract(on);
+  seg.setViewSmallSegment(0.0);
+  seg.extract(off);
+  ASSERT_EQ(on.size(), off.size());
+  EXPECT_GT(on.size(), 1u);
+  for (std::size_t s = 0; s < on.size(); ++s)
+    EXPECT_EQ(on[s].indices, off[s].indices);
+}
+
+TEST(ViewSmallSegment, SetterKeepsTheOldValueOnABadOne) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  seg.setViewSmallSegment(-0.1);
+  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  seg.setViewSmallSegment(0.6);
+  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  seg.setViewSmallSegment(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  seg.setViewSmallSegment(0.05);
+  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.05);
+  seg.setViewSmallSegment(0.0);
+  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.0);
+}
