@@ -183,18 +183,7 @@ mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
   }
   if (!merged)
     return {};
-  // Compact ids in order of the smallest input segment of each merged one.
-  std::vector<std::uint32_t> id(t, kNone), map(t);
-  std::uint32_t count = 0;
-  for (std::size_t s = 0; s < t; ++s) {
-    if (id[group[s]] == kNone)
-      id[group[s]] = count++;
-    map[s] = id[group[s]];
-  }
-  for (auto& s : segment)
-    s = map[s];
-  num_segments = count;
-  return map;
+  return joinGroups(group, segment, num_segments);
 }
 
 } // namespace pcl_ncut_seg

@@ -3,6 +3,8 @@
 
 #include <pcl_ncut_seg/core/supernodes.h>
 
+#include <numeric>
+
 namespace pcl_ncut_seg {
 
 std::vector<std::uint32_t> joinSmallSegments(const CsrGraph& graph,
@@ -24,21 +26,21 @@ std::vector<std::uint32_t> joinSmallSegments(const CsrGraph& graph,
         ++shared[s * m + t];
     }
   }
-  std::vector<std::uint32_t> into(m); // per segment, the one it joined (itself: none)
-  for (std::uint32_t s = 0; s < m; ++s)
-    into[s] = s;
-  std::vector<bool> alive(m, true), island(m, false);
+  std::vector<std::uint32_t> group(m); // per input segment, the one it has joined (or itself)
+  std::iota(group.begin(), group.end(), 0u);
+  std::vector<bool> island(m, false);
   bool joined = false;
   for (;;) {
     std::uint32_t small = kNone;
     for (std::uint32_t s = 0; s < m; ++s)
-      if (alive[s] && !island[s] && area[s] < min_area && (small == kNone || area[s] < area[small]))
+      if (group[s] == s && !island[s] && area[s] < min_area &&
+          (small == kNone || area[s] < area[small]))
         small = s;
     if (small == kNone)
       break;
     std::uint32_t best = kNone;
     for (std::uint32_t t = 0; t < m; ++t)
-      if (alive[t] && t != small && shared[small * m + t] > 0 &&
+      if (group[t] == t && t != small && shared[small * m + t] > 0 &&
           (best == kNone || shared[small * m + t] > shared[small * m + best]))
         best = t;
     if (best == kNone) {
@@ -46,8 +48,9 @@ std::vector<std::uint32_t> joinSmallSegments(const CsrGraph& graph,
       continue;
     }
     // small joins best: its area and its edges to every other segment become best's.
-    alive[small] = false;
-    into[small] = best;
+    for (auto& g : group)
+      if (g == small)
+        g = best;
     area[best] += area[small];
     for (std::uint32_t t = 0; t < m; ++t) {
       if (t == best || t == small)
@@ -60,21 +63,7 @@ std::vector<std::uint32_t> joinSmallSegments(const CsrGraph& graph,
   }
   if (!joined)
     return {};
-  std::vector<std::uint32_t> map(m, kNone), id(m, kNone);
-  std::uint32_t next = 0;
-  for (std::uint32_t s = 0; s < m; ++s)
-    if (alive[s])
-      id[s] = next++;
-  for (std::uint32_t s = 0; s < m; ++s) {
-    std::uint32_t r = s;
-    while (into[r] != r)
-      r = into[r];
-    map[s] = id[r];
-  }
-  for (auto& s : segment)
-    s = map[s];
-  num_segments = next;
-  return map;
+  return joinGroups(group, segment, num_segments);
 }
 
 } // namespace pcl_ncut_seg

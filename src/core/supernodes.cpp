@@ -42,6 +42,23 @@ std::vector<std::uint32_t> compactLabels(const std::vector<std::uint32_t>& label
   return first;
 }
 
+std::vector<std::uint32_t> joinGroups(const std::vector<std::uint32_t>& group,
+                                      std::vector<std::uint32_t>& segment,
+                                      std::size_t& num_segments) {
+  const std::size_t t = group.size();
+  std::vector<std::uint32_t> id(t, kNone), map(t);
+  std::uint32_t count = 0;
+  for (std::size_t s = 0; s < t; ++s) {
+    if (id[group[s]] == kNone)
+      id[group[s]] = count++;
+    map[s] = id[group[s]];
+  }
+  for (auto& s : segment)
+    s = map[s];
+  num_segments = count;
+  return map;
+}
+
 Supernodes renumberSupernodes(const Supernodes& sn) {
   Supernodes out;
   std::vector<std::uint32_t> id;

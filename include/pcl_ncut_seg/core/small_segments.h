@@ -25,7 +25,7 @@ namespace pcl_ncut_seg {
  * \param[in] min_area     a segment with less area is small
  * Inputs and outputs:
  * \param[in,out] segment       per vertex, its segment in [0, num_segments); compact ids on
- *                              output, in the order of the old ids
+ *                              output (joinGroups() in core/supernodes.h)
  * \param[in,out] num_segments  the number of segments
  * \return per old segment, its new one (empty when nothing joined) */
 std::vector<std::uint32_t> joinSmallSegments(const CsrGraph& graph,

@@ -60,6 +60,17 @@ std::vector<std::uint32_t> compactLabels(const std::vector<std::uint32_t>& label
                                          std::size_t num_labels, std::vector<std::uint32_t>& id,
                                          std::vector<std::uint32_t>& compact);
 
+/** \brief Segments joined into groups, as the merges after the cut make them.
+ *
+ * \param[in]     group         per segment, its group, named by one of its segments
+ * \param[in,out] segment       per vertex, its segment; on output its group's compact id,
+ *                              numbered in order of each group's smallest segment
+ * \param[out]    num_segments  the number of groups
+ * \return per segment, its group's compact id */
+std::vector<std::uint32_t> joinGroups(const std::vector<std::uint32_t>& group,
+                                      std::vector<std::uint32_t>& segment,
+                                      std::size_t& num_segments);
+
 /** \brief Supernodes renumbered with compact ids in order of each one's first point (by
  * index), as refineSupernodes() and splitAtCreases() return them; those no point is in are
  * dropped.
