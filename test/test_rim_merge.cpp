@@ -201,30 +201,9 @@ TEST(RimMerge, NothingWithoutARim) {
 
 namespace {
 
-/// What a depth camera 1 m in front of a tilted flat disc sees: an organized 160 x 120 cloud,
-/// NaN off the disc, with small range noise.
+/// What a depth camera sees of a flat disc (test::discView), noise drawn from seed 7.
 pcl::PointCloud<pcl::PointXYZ>::Ptr discView() {
-  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(160, 120);
-  std::mt19937_64 rng(7);
-  std::normal_distribution<float> noise(0.0f, 0.0005f);
-  const float f = 150.0f, nan = std::numeric_limits<float>::quiet_NaN();
-  for (int row = 0; row < 120; ++row)
-    for (int col = 0; col < 160; ++col) {
-      const float u = (col - 80 + 0.5f) / f, v = (row - 60 + 0.5f) / f;
-      // The plane z = 1 + 0.3 y, along the ray (u, v, 1).
-      const float z = 1.0f / (1.0f - 0.3f * v);
-      pcl::PointXYZ& p = (*cloud)(col, row);
-      if (std::hypot(u * z, v * z - 0.0f) > 0.25f) {
-        p.x = p.y = p.z = nan;
-        continue;
-      }
-      const float zn = z + noise(rng);
-      p.x = u * zn;
-      p.y = v * zn;
-      p.z = zn;
-    }
-  cloud->is_dense = false;
-  return cloud;
+  return test::discView(7);
 }
 
 std::map<std::uint32_t, std::set<std::uint32_t>>

@@ -130,34 +130,6 @@ TEST(JoinSmallSegments, AnIslandStaysAndNothingSmallChangesNothing) {
 
 namespace {
 
-/// What a depth camera sees of a tilted disc with a small bump on it: an organized 160 x 120
-/// cloud, NaN off the disc, with small range noise.
-pcl::PointCloud<pcl::PointXYZ>::Ptr bumpyDiscView() {
-  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(160, 120);
-  std::mt19937_64 rng(11);
-  std::normal_distribution<float> noise(0.0f, 0.0005f);
-  const float f = 150.0f, nan = std::numeric_limits<float>::quiet_NaN();
-  for (int row = 0; row < 120; ++row)
-    for (int col = 0; col < 160; ++col) {
-      const float u = (col - 80 + 0.5f) / f, v = (row - 60 + 0.5f) / f;
-      float z = 1.0f / (1.0f - 0.3f * v);
-      pcl::PointXYZ& p = (*cloud)(col, row);
-      if (std::hypot(u * z, v * z) > 0.25f) {
-        p.x = p.y = p.z = nan;
-        continue;
-      }
-      const float r = std::hypot(u * z - 0.1f, v * z);
-      if (r < 0.03f) // a bump 2 cm high towards the camera
-        z -= 0.02f * std::cos(0.5f * 3.14159265f * r / 0.03f);
-      const float zn = z + noise(rng);
-      p.x = u * zn;
-      p.y = v * zn;
-      p.z = zn;
-    }
-  cloud->is_dense = false;
-  return cloud;
-}
-
 std::vector<pcl::PointIndices> segmentView(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
                                            double rim_merge, double small) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
@@ -173,7 +145,7 @@ std::vector<pcl::PointIndices> segmentView(const pcl::PointCloud<pcl::PointXYZ>:
 } // namespace
 
 TEST(ViewSmallSegment, JoinsOnlyWholeSegmentsAndLeavesNoSmallOneInAView) {
-  const auto cloud = bumpyDiscView();
+  const auto cloud = test::discView(11, 0.02f); // a disc with a bump 2 cm high
   std::size_t valid = 0;
   for (const auto& p : *cloud)
     valid += std::isfinite(p.x);

@@ -316,6 +316,33 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr applyRigidMotion(const pcl::PointCloud<pcl::
   return out;
 }
 
+pcl::PointCloud<pcl::PointXYZ>::Ptr discView(std::uint64_t seed, float bump) {
+  auto cloud = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>(160, 120);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> noise(0.0f, 0.0005f);
+  const float f = 150.0f, nan = std::numeric_limits<float>::quiet_NaN();
+  for (int row = 0; row < 120; ++row)
+    for (int col = 0; col < 160; ++col) {
+      const float u = (col - 80 + 0.5f) / f, v = (row - 60 + 0.5f) / f;
+      // The plane z = 1 + 0.3 y, along the ray (u, v, 1).
+      float z = 1.0f / (1.0f - 0.3f * v);
+      pcl::PointXYZ& p = (*cloud)(col, row);
+      if (std::hypot(u * z, v * z) > 0.25f) {
+        p.x = p.y = p.z = nan;
+        continue;
+      }
+      const float r = std::hypot(u * z - 0.1f, v * z);
+      if (bump > 0.0f && r < 0.03f)
+        z -= bump * std::cos(0.5f * 3.14159265f * r / 0.03f);
+      const float zn = z + noise(rng);
+      p.x = u * zn;
+      p.y = v * zn;
+      p.z = zn;
+    }
+  cloud->is_dense = false;
+  return cloud;
+}
+
 double meanPointSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud) {
   pcl::PointCloud<pcl::PointXYZ>::Ptr finite(new pcl::PointCloud<pcl::PointXYZ>);
   for (const auto& p : cloud)

@@ -72,6 +72,12 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr randomCube(std::size_t n, std::uint64_t seed
 pcl::PointCloud<pcl::PointXYZ>::Ptr applyRigidMotion(const pcl::PointCloud<pcl::PointXYZ>& cloud,
                                                      std::uint64_t seed);
 
+/** \brief What a depth camera 1 m in front of a flat disc (radius 0.25 m, tilted: the plane
+ * z = 1 + 0.3 y) sees: an organized 160 x 120 cloud, NaN off the disc, with range noise of
+ * 0.5 mm (std::mt19937_64(seed)). With bump > 0, a smooth bump of that height towards the
+ * camera, 3 cm in radius, 0.1 m right of the disc's centre. */
+pcl::PointCloud<pcl::PointXYZ>::Ptr discView(std::uint64_t seed, float bump = 0.0f);
+
 /** \brief Mean distance from each finite point to its nearest other point, to check the
  * shapes' proportions against the point spacing. */
 double meanPointSpacing(const pcl::PointCloud<pcl::PointXYZ>& cloud);
