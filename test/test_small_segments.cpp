@@ -14,8 +14,6 @@
 
 #include <cmath>
 #include <limits>
-#include <map>
-#include <random>
 #include <set>
 
 using namespace pcl_ncut_seg;
@@ -48,6 +46,16 @@ std::vector<std::uint32_t> halvesWithBox(std::size_t x0, std::size_t x1, std::si
   return segment;
 }
 
+/// Two pieces inside the left half, side by side: segment 2 on [5, 6] x [10, 12] (6 points) and
+/// segment 3 on [7, 10] x [10, 12] (12 points).
+std::vector<std::uint32_t> twoPieces() {
+  std::vector<std::uint32_t> segment = halvesWithBox(5, 10, 10, 12, 3);
+  for (std::size_t y = 10; y <= 12; ++y)
+    for (std::size_t x = 5; x <= 6; ++x)
+      segment[y * kW + x] = 2;
+  return segment;
+}
+
 } // namespace
 
 TEST(JoinSmallSegments, ASmallPieceJoinsTheNeighbourItSharesMostEdgesWith) {
@@ -74,10 +82,7 @@ TEST(JoinSmallSegments, TheSmallestJoinsFirstAndTheJoinedOneIsMeasuredAgain) {
   const Sheet s;
   // Two pieces inside the left half, side by side: a (2 x 3 = 6 points) and b (4 x 3 = 12
   // points), each below 15; a touches b along 3 points and the left half along 7.
-  std::vector<std::uint32_t> segment = halvesWithBox(5, 10, 10, 12, 3);
-  for (std::size_t y = 10; y <= 12; ++y)
-    for (std::size_t x = 5; x <= 6; ++x)
-      segment[y * kW + x] = 2;
+  std::vector<std::uint32_t> segment = twoPieces();
   std::size_t t = 4;
   const std::vector<std::uint32_t> map = joinSmallSegments(s.graph, s.area, 15.0, segment, t);
   ASSERT_EQ(map.size(), 4u);
@@ -87,10 +92,7 @@ TEST(JoinSmallSegments, TheSmallestJoinsFirstAndTheJoinedOneIsMeasuredAgain) {
   EXPECT_EQ(map[3], 0u);
   EXPECT_EQ(t, 2u);
   // With a bound of 7, a joins (6 < 7) and b (12) is not small.
-  segment = halvesWithBox(5, 10, 10, 12, 3);
-  for (std::size_t y = 10; y <= 12; ++y)
-    for (std::size_t x = 5; x <= 6; ++x)
-      segment[y * kW + x] = 2;
+  segment = twoPieces();
   t = 4;
   const std::vector<std::uint32_t> map7 = joinSmallSegments(s.graph, s.area, 7.0, segment, t);
   ASSERT_EQ(map7.size(), 4u);
