@@ -83,6 +83,10 @@ struct CentralityParams {
   /// Extension: Fast computes eq. (1) on a coarse graph (f within about 1-2% of Exact's).
   CentralityMode mode = CentralityMode::Fast;
   int representatives = 20000; ///< Fast: points of the coarse graph (smaller inputs: exact)
+  /// Extension (core/starts.h): step 4's arbitrary first sample taken this many times (the
+  /// first samples of one farthest-point chain), a segmentation from each, and the one closest
+  /// to the others kept. 1: one start, the paper. Not in CAD mode.
+  int starts = 5;
 };
 
 /** \brief Sec. 4.2: supernodes. */

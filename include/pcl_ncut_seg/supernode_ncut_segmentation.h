@@ -106,6 +106,10 @@ public:
   /** \param[in] representatives  centrality.representatives, >= 100 */
   void setNumberOfRepresentatives(int representatives);
   int getNumberOfRepresentatives() const { return params_.centrality.representatives; }
+  /** \param[in] starts  centrality.starts, in [1, 16]; 1: one start of the farthest-point
+   * sampling, as the paper */
+  void setStarts(int starts);
+  int getStarts() const { return params_.centrality.starts; }
   /** \param[in] fraction  supernodes.crossing_fraction, in [0, 1] */
   void setCrossingFraction(float fraction);
   float getCrossingFraction() const { return params_.supernodes.crossing_fraction; }
@@ -265,7 +269,8 @@ public:
   static void segmentColor(std::size_t i, std::uint8_t& r, std::uint8_t& g, std::uint8_t& b);
 
   /// \name Intermediate results (valid after a successful extract())
-  /// Per-point arrays have one entry per input cloud point; NaN or kNone where not used.
+  /// Per-point arrays have one entry per input cloud point; NaN or kNone where not used. With
+  /// several starts (setStarts), those of the start whose segments extract() returned.
   /// \{
   /** \brief Centrality f(p) of eq. (1) per input point (NaN for points not segmented). */
   std::vector<float> getCentrality() const;
@@ -314,6 +319,10 @@ protected:
   /** \brief Take params (valid) in place of params_, invalidating what they change. */
   bool update(const pcl_ncut_seg::Parameters& params, const char* method);
   void invalidate();
+  /** \brief The analysis of the start whose segments extract() returned (analysis_ set). */
+  const pcl_ncut_seg::Analysis& shownAnalysis() const {
+    return pcl_ncut_seg::startAnalysis(*analysis_, have_result_ ? result_.start : 0);
+  }
 
   KdTreePtr search_;
   pcl_ncut_seg::Parameters params_;

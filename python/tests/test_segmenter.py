@@ -10,7 +10,7 @@ TABLE = pcl_ncut_seg.parameter_table()
 # Per parameter, a valid value other than its default (every row must have one).
 OTHER = {
     "k": 11, "bridge_gap": None, "denoise": None, "max_points": 1000, "centrality_samples": 30, "centrality": "exact",
-    "representatives": 500, "crossing_fraction": 0.25, "area_fraction": 0.02,
+    "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
     "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,

@@ -38,15 +38,15 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
 namespace {
 Centrality centralityStage(const CsrGraph& graph, const CentralityParams& params,
                            unsigned num_threads, const std::uint32_t* tie_rank,
-                           const PhaseProgressFn& progress) {
+                           const PhaseProgressFn& progress, std::size_t start) {
   ProgressFn fraction;
   if (progress)
     fraction = [&progress](double done) { progress("Cen", done); };
   const auto samples = static_cast<std::size_t>(params.samples.value_or(0));
   if (params.mode == CentralityMode::Exact)
-    return computeCentrality(graph, samples, num_threads, tie_rank, fraction);
+    return computeCentrality(graph, samples, num_threads, tie_rank, fraction, start);
   return computeCoarseCentrality(graph, static_cast<std::size_t>(params.representatives), samples,
-                                 num_threads, tie_rank, fraction);
+                                 num_threads, tie_rank, fraction, start);
 }
 
 void report(const PhaseProgressFn& progress, const char* phase, double fraction) {
@@ -56,20 +56,20 @@ void report(const PhaseProgressFn& progress, const char* phase, double fraction)
 } // namespace
 
 Analysis featureStages(CsrGraph graph, const Parameters& params, const std::uint32_t* tie_rank,
-                       PhaseTimes& times, const PhaseProgressFn& progress) {
+                       PhaseTimes& times, const PhaseProgressFn& progress, std::size_t start) {
   const unsigned threads = params.execution.num_threads;
   Analysis a;
   a.graph = std::move(graph);
   Stopwatch clock;
   report(progress, "Cen", 0.0);
-  a.centrality = centralityStage(a.graph, params.centrality, threads, tie_rank, progress);
+  a.centrality = centralityStage(a.graph, params.centrality, threads, tie_rank, progress, start);
   report(progress, "Cen", 1.0);
-  times.centrality = clock.lap();
+  times.centrality += clock.lap();
   report(progress, "Snod", 0.0);
   a.raw_supernodes =
       extractSupernodes(a.graph, a.centrality.f, params.supernodes.crossing_fraction);
   report(progress, "Snod", 1.0);
-  times.supernodes = clock.lap();
+  times.supernodes += clock.lap();
   report(progress, "LRef", 0.0);
   a.radii = pointRadii(a.graph, a.centrality.f, threads);
   a.supernodes =
@@ -77,7 +77,7 @@ Analysis featureStages(CsrGraph graph, const Parameters& params, const std::uint
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label, threads);
   report(progress, "LRef", 1.0);
-  times.refinement = clock.lap();
+  times.refinement += clock.lap();
   return a;
 }
 

@@ -59,7 +59,8 @@ std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source
 }
 
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
-                             const std::uint32_t* tie_rank, const ProgressFn& progress) {
+                             const std::uint32_t* tie_rank, const ProgressFn& progress,
+                             std::size_t start) {
   const std::size_t n = graph.numVertices();
   Centrality out;
   out.f.assign(n, 0.0f);
@@ -147,6 +148,20 @@ Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, uns
       if (ecc > 0.0f)
         quantum[c] = 2.0 * ecc / static_cast<double>(std::int64_t(1) << 40);
 
+      // Another start (core/starts.h): the start-th sample of the chain that begins there.
+      for (std::size_t i = 0; i < start && i + 1 < count[c]; ++i) {
+        touched.clear();
+        search.run(pos[first], dist.data(), h.data(), &touched);
+        for (std::uint32_t p : touched) {
+          h[p] = std::min(h[p], dist[p]);
+          dist[p] = kInf;
+        }
+        h[pos[first]] = 0.0f;
+        float best = -1.0f;
+        first = argmax(h, best);
+      }
+      for (std::uint32_t p = begin[c]; p < begin[c + 1] && start > 0; ++p)
+        h[p] = kInf;
       std::uint32_t s = first;
       for (std::size_t i = 0; i < count[c]; ++i) {
         if (i > 0) { // step 4: the vertex with the largest h, ties to the smallest index

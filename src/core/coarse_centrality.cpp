@@ -219,10 +219,11 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
 
 Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_representatives,
                                    std::size_t num_samples, unsigned num_threads,
-                                   const std::uint32_t* tie_rank, const ProgressFn& progress) {
+                                   const std::uint32_t* tie_rank, const ProgressFn& progress,
+                                   std::size_t start) {
   const std::size_t n = graph.numVertices();
   if (num_representatives == 0 || n <= num_representatives)
-    return computeCentrality(graph, num_samples, num_threads, tie_rank, progress);
+    return computeCentrality(graph, num_samples, num_threads, tie_rank, progress, start);
 
   const CsrGraph& g = graph;
 
@@ -348,7 +349,7 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
       coarse_rank[by_rank[i]] = i;
   }
   const Centrality cc =
-      computeCentrality(coarse, num_samples, num_threads, coarse_rank.data(), progress);
+      computeCentrality(coarse, num_samples, num_threads, coarse_rank.data(), progress, start);
 
   // The coarse graph's paths zigzag through the representatives, so its distances exceed the
   // kNN graph's by a few percent. Measure the ratio on pairs of representatives 3 to 8 radii

@@ -323,6 +323,13 @@ std::vector<ParameterInfo> makeTable() {
           "computed exactly)",
           false),
       atLeast(100), FIELD(centrality.representatives)));
+  t.push_back(number<int, int>(
+      row("starts", "centrality.starts", S::Centrality, K::Integer, "S",
+          "farthest-point sampling of eq. (1) from S starts (the first S samples of one chain), "
+          "a segmentation from each; the one closest to the others by Rand index is kept (1: "
+          "one start, the paper; not in CAD mode)",
+          false),
+      closed(1, 16), FIELD(centrality.starts)));
   // Supernodes (Sec. 4.2)
   t.push_back(number<float, float>(
       row("crossing_fraction", "supernodes.crossing_fraction", S::Supernodes, K::Real, "F",

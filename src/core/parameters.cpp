@@ -33,6 +33,7 @@ Parameters Parameters::paper() {
   p.graph.denoise.reset();
   p.graph.max_points.reset();
   p.centrality.mode = CentralityMode::Exact;
+  p.centrality.starts = 1;
   p.refinement.crease_split.reset();
   p.refinement.crease_cut.reset();
   p.similarity.normalize_width = false;

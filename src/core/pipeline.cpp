@@ -6,6 +6,7 @@
 #include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/morton.h>
 #include <pcl_ncut_seg/core/single_view.h>
+#include <pcl_ncut_seg/core/starts.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
 #include <pcl_ncut_seg/core/subsample.h>
 #include <pcl_ncut_seg/core/threads.h>
@@ -36,13 +37,31 @@ bool splitsCreases(const Parameters& params) {
   return params.refinement.crease_split || params.refinement.crease_cut;
 }
 
-/// The extensions that measure the surface's bends around the refined supernodes.
+/// Progress of one of several starts: each start's phases fill its share of every phase.
+PhaseProgressFn startProgress(const PhaseProgressFn& progress, std::size_t start,
+                              std::size_t starts) {
+  if (!progress || starts == 1)
+    return progress;
+  return [progress, start, starts](const char* phase, double done) {
+    progress(phase, (static_cast<double>(start) + done) / static_cast<double>(starts));
+  };
+}
+
+/// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
+/// supernodes, once per start of eq. (1)'s sampling (core/starts.h); the bends are measured once.
 Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress) {
-  Analysis a = featureStages(std::move(graph), params, tie_rank, times, progress);
+  const auto starts = static_cast<std::size_t>(std::max(1, params.centrality.starts));
+  Analysis a = featureStages(std::move(graph), params, tie_rank, times,
+                             startProgress(progress, 0, starts), 0);
   a.rim = std::move(rim);
+  for (std::size_t s = 1; s < starts; ++s) {
+    a.other_starts.push_back(featureStages(CsrGraph(a.graph), params, tie_rank, times,
+                                           startProgress(progress, s, starts), s));
+    a.other_starts.back().rim = a.rim;
+  }
   const CutNeeds needs = cutNeeds(params);
   const bool creases = splitsCreases(params);
   if (!creases && !needs.concavity && !needs.crease && !needs.rim)
@@ -50,11 +69,30 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
   // Measured between the supernodes, like eq. (8): their time counts as refinement time.
   Stopwatch clock;
   const SurfaceBends bends = surfaceBends(a.graph, xyz.data(), params.execution.num_threads);
-  if (creases)
-    creaseStage(a, xyz.data(), bends, params);
-  contactStage(a, xyz.data(), bends, needs, params.execution.num_threads);
+  for (std::size_t s = 0; s < starts; ++s) {
+    Analysis& one = s == 0 ? a : a.other_starts[s - 1];
+    if (creases)
+      creaseStage(one, xyz.data(), bends, params);
+    contactStage(one, xyz.data(), bends, needs, params.execution.num_threads);
+  }
   times.refinement += clock.lap();
   return a;
+}
+
+/// The cut stages on one start's analysis.
+CutResult cutStart(const Analysis& analysis, const Parameters& params, PhaseTimes& times) {
+  CutResult r;
+  Stopwatch clock;
+  r.graph = similarityStage(analysis, params.similarity);
+  r.hierarchy = hierarchyStage(analysis, r.graph, params.stopping);
+  times.hierarchy += clock.lap();
+  labelPoints(analysis, r);
+  boundaryStage(analysis, params.boundary, r);
+  rimStage(analysis, params.boundary, r);
+  viewSmallSegmentStage(analysis, params.boundary, r);
+  numberSegments(analysis.order, r);
+  times.points += clock.lap();
+  return r;
 }
 } // namespace
 
@@ -93,21 +131,33 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   }
   a.order = std::move(points.order);
   a.noise = noise;
+  for (Analysis& other : a.other_starts) {
+    other.order = a.order;
+    other.noise = noise;
+  }
   return a;
 }
 
+const Analysis& startAnalysis(const Analysis& analysis, std::size_t start) {
+  return start == 0 ? analysis : analysis.other_starts.at(start - 1);
+}
+
 CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& times) {
-  CutResult r;
+  times.hierarchy = times.points = 0;
+  if (analysis.other_starts.empty())
+    return cutStart(analysis, params, times);
+  std::vector<CutResult> results;
+  results.push_back(cutStart(analysis, params, times));
+  for (const Analysis& other : analysis.other_starts)
+    results.push_back(cutStart(other, params, times));
   Stopwatch clock;
-  r.graph = similarityStage(analysis, params.similarity);
-  r.hierarchy = hierarchyStage(analysis, r.graph, params.stopping);
-  times.hierarchy = clock.lap();
-  labelPoints(analysis, r);
-  boundaryStage(analysis, params.boundary, r);
-  rimStage(analysis, params.boundary, r);
-  viewSmallSegmentStage(analysis, params.boundary, r);
-  numberSegments(analysis.order, r);
-  times.points = clock.lap();
+  std::vector<const std::vector<std::uint32_t>*> partitions;
+  for (const CutResult& r : results)
+    partitions.push_back(&r.point_segment);
+  const std::size_t start = medoidPartition(partitions);
+  times.points += clock.lap();
+  CutResult r = std::move(results[start]);
+  r.start = start;
   return r;
 }
 

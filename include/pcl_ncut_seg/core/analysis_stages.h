@@ -22,10 +22,11 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
 
 /** \brief Secs. 4.1-4.3 on a graph: the centrality f (eq. 1), the supernodes of its gradient
  * flow (4.2), the radii r(p), local refinement (4.3), feature statistics and eq. (8).
- * Times go to times.centrality, .supernodes, .refinement.
- * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index) */
+ * Times are added to times.centrality, .supernodes, .refinement.
+ * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index)
+ * \param[in] start     which of step 4's starts the samples of eq. (1) take (core/starts.h) */
 Analysis featureStages(CsrGraph graph, const Parameters& params, const std::uint32_t* tie_rank,
-                       PhaseTimes& times, const PhaseProgressFn& progress);
+                       PhaseTimes& times, const PhaseProgressFn& progress, std::size_t start = 0);
 
 /** \brief Oriented normals and the model's mean bend per kNN edge, for the crease and
  * concavity stages (core/concavity.h). */

@@ -44,10 +44,13 @@ using ProgressFn = std::function<void(double)>;
  *                         does not depend on how the caller numbered the vertices
  * \param[in] progress     if set, called from the calling thread with the fraction of the full
  *                         searches done
+ * \param[in] start        0: the first sample as above; j > 0: the j-th sample of that chain
+ *                         (capped at the component's samples) is the first one instead, another
+ *                         of step 4's arbitrary starts (core/starts.h)
  */
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
                              const std::uint32_t* tie_rank = nullptr,
-                             const ProgressFn& progress = {});
+                             const ProgressFn& progress = {}, std::size_t start = 0);
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
  * Unreachable vertices get +infinity. */

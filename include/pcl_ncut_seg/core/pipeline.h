@@ -1,10 +1,12 @@
 /*
  * pcl_ncut_seg: the whole segmentation over plain arrays, in two stages (the paper's order):
  *   analyze(): graph (4.1) -> centrality (4.1) -> supernodes (4.2) -> refinement (4.3)
- *              -> crease splits -> contact concavity and edge creases; in CAD mode (Sec. 7)
- *              the ridge graph first. Expensive: once per input.
+ *              -> crease splits -> contact concavity and edge creases, once per start of
+ *              eq. (1)'s sampling; in CAD mode (Sec. 7) the ridge graph first. Expensive: once
+ *              per input.
  *   cut():     supernode graph (5.1) -> hierarchy and stopping rule (5.2) -> point segments
- *              -> boundary refinement -> numbering. Cheap: repeat it on a kept analysis.
+ *              -> boundary refinement -> numbering, per start, and the medoid of the starts'
+ *              segmentations. Cheap: repeat it on a kept analysis.
  * Each stage is a named function of its own file (analysis_stages.h, cut_stages.h and the
  * files they call); this file only runs them in order. segmentPoints() does everything from
  * a point array, as the PCL front end does from a cloud.
@@ -86,7 +88,12 @@ struct Analysis {
   /// fits planes to the sides of boundaries (core/rim_merge.h).
   std::vector<float> rim_xyz, rim_normals;
   bool has_rim_planes = false;
+  /// centrality.starts > 1 (core/starts.h): the analyses from the other starts of eq. (1)'s
+  /// sampling, each complete; this one is start 0.
+  std::vector<Analysis> other_starts;
 };
+/** \brief The analysis of the given start: 0 is analysis itself, s > 0 its other_starts[s - 1]. */
+const Analysis& startAnalysis(const Analysis& analysis, std::size_t start);
 
 /** \brief What the cut stages need the analysis to have measured. */
 struct CutNeeds {
@@ -112,10 +119,12 @@ struct CutResult {
   std::vector<std::uint32_t> supernode_segment; ///< per refined supernode, its segment
   std::vector<std::uint32_t> point_segment;     ///< per vertex, its segment
   std::size_t num_segments = 0;
+  std::size_t start = 0; ///< the start whose analysis gave it (startAnalysis(); core/starts.h)
 };
 
 /** \brief Run every cut stage in order on an analysis that serves() the parameters. Segments
- * are numbered in order of their first vertex in Analysis::order. */
+ * are numbered in order of their first vertex in Analysis::order. With other starts, each start
+ * is cut and the medoid of their segmentations is returned (core/starts.h). */
 CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& times);
 
 /** \brief Points prepared for analyze(): the distinct positions of an array of points in

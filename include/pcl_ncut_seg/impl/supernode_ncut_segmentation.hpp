@@ -390,10 +390,10 @@ std::vector<float> pcl::SupernodeNCutSegmentation<PointT>::getCentrality() const
   std::vector<float> out(input_ ? input_->size() : 0, std::numeric_limits<float>::quiet_NaN());
   if (analysis_)
     for (std::size_t i = 0; i < point_index_.size(); ++i)
-      out[point_index_[i]] = analysis_->centrality.f[i];
+      out[point_index_[i]] = shownAnalysis().centrality.f[i];
   if (analysis_)
     for (const auto& d : duplicates_)
-      out[d.first] = analysis_->centrality.f[d.second];
+      out[d.first] = shownAnalysis().centrality.f[d.second];
   return out;
 }
 
@@ -401,7 +401,7 @@ template <typename PointT>
 std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getLocalMaxima() const {
   std::vector<int> out;
   if (analysis_)
-    for (std::uint32_t v : analysis_->raw_supernodes.localMaxima())
+    for (std::uint32_t v : shownAnalysis().raw_supernodes.localMaxima())
       out.push_back(point_index_[v]);
   return out;
 }
@@ -410,7 +410,7 @@ template <typename PointT>
 std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSaddles() const {
   std::vector<int> out;
   if (analysis_)
-    for (std::uint32_t v : analysis_->raw_supernodes.saddles())
+    for (std::uint32_t v : shownAnalysis().raw_supernodes.saddles())
       out.push_back(point_index_[v]);
   return out;
 }
@@ -419,7 +419,8 @@ template <typename PointT>
 std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSupernodeLabels(bool refined) const {
   std::vector<int> out(input_ ? input_->size() : 0, -1);
   if (analysis_) {
-    const auto& label = refined ? analysis_->supernodes.label : analysis_->raw_supernodes.label;
+    const auto& label =
+        refined ? shownAnalysis().supernodes.label : shownAnalysis().raw_supernodes.label;
     for (std::size_t i = 0; i < point_index_.size(); ++i)
       out[point_index_[i]] = static_cast<int>(label[i]);
     for (const auto& d : duplicates_)
@@ -432,7 +433,7 @@ template <typename PointT>
 std::size_t pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSupernodes(bool refined) const {
   if (!analysis_)
     return 0;
-  return refined ? analysis_->supernodes.size() : analysis_->raw_supernodes.size();
+  return refined ? shownAnalysis().supernodes.size() : shownAnalysis().raw_supernodes.size();
 }
 
 template <typename PointT>

@@ -54,6 +54,7 @@ PCL_NCUT_SEG_SETTER(setNumberOfSamples, int,
                     p.centrality.samples = value == 0 ? std::nullopt : std::optional<int>(value))
 PCL_NCUT_SEG_SETTER(setCentralityMode, pcl_ncut_seg::CentralityMode, p.centrality.mode = value)
 PCL_NCUT_SEG_SETTER(setNumberOfRepresentatives, int, p.centrality.representatives = value)
+PCL_NCUT_SEG_SETTER(setStarts, int, p.centrality.starts = value)
 PCL_NCUT_SEG_SETTER(setCrossingFraction, float, p.supernodes.crossing_fraction = value)
 PCL_NCUT_SEG_SETTER(setAreaFraction, float, p.refinement.area_fraction = value)
 PCL_NCUT_SEG_SETTER(setHeightFraction, float, p.refinement.height_fraction = value)

@@ -1,0 +1,29 @@
+/*
+ * pcl_ncut_seg: several starts of the farthest-point sampling of eq. (1), and the segmentation
+ * that agrees best with the others (an extension of Sec. 4.1, step 4). Step 4 starts the
+ * sampling at an arbitrary point. Each start gives other samples, hence another f, other
+ * supernodes and at times other segments; which start is lucky depends on how the surface was
+ * sampled. The segmentation closest to all the others (the medoid under the Rand distance) is
+ * the one that least depends on that choice.
+ */
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+/** \brief The number of pairs of points that one partition puts together and the other apart
+ * (the Rand distance times n(n-1)/2).
+ * \param[in] a, b  per point, its segment; equal sizes */
+std::uint64_t pairDisagreements(const std::vector<std::uint32_t>& a,
+                                const std::vector<std::uint32_t>& b);
+
+/** \brief The medoid of partitions of the same points: the one whose summed pairDisagreements()
+ * with all the others is the smallest; ties to the smallest index.
+ * \param[in] partitions  at least one, each per point its segment, all of one size
+ * \return its index in partitions */
+std::size_t medoidPartition(const std::vector<const std::vector<std::uint32_t>*>& partitions);
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,50 @@
+// The medoid of several segmentations (see core/starts.h).
+#include <pcl_ncut_seg/core/starts.h>
+
+#include <algorithm>
+
+namespace pcl_ncut_seg {
+
+namespace {
+/// Sum over runs of equal keys of C(run, 2); keys sorted in place.
+std::uint64_t pairsWithin(std::vector<std::uint64_t>& keys) {
+  std::sort(keys.begin(), keys.end());
+  std::uint64_t pairs = 0;
+  for (std::size_t i = 0; i < keys.size();) {
+    std::size_t j = i + 1;
+    while (j < keys.size() && keys[j] == keys[i])
+      ++j;
+    const std::uint64_t run = j - i;
+    pairs += run * (run - 1) / 2;
+    i = j;
+  }
+  return pairs;
+}
+} // namespace
+
+std::uint64_t pairDisagreements(const std::vector<std::uint32_t>& a,
+                                const std::vector<std::uint32_t>& b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  std::vector<std::uint64_t> keys(a.begin(), a.begin() + n);
+  const std::uint64_t together_a = pairsWithin(keys);
+  keys.assign(b.begin(), b.begin() + n);
+  const std::uint64_t together_b = pairsWithin(keys);
+  for (std::size_t i = 0; i < n; ++i)
+    keys[i] = (std::uint64_t(a[i]) << 32) | b[i];
+  const std::uint64_t together_both = pairsWithin(keys);
+  return together_a + together_b - 2 * together_both;
+}
+
+std::size_t medoidPartition(const std::vector<const std::vector<std::uint32_t>*>& partitions) {
+  const std::size_t m = partitions.size();
+  std::vector<std::uint64_t> sum(m, 0);
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = i + 1; j < m; ++j) {
+      const std::uint64_t d = pairDisagreements(*partitions[i], *partitions[j]);
+      sum[i] += d;
+      sum[j] += d;
+    }
+  return static_cast<std::size_t>(std::min_element(sum.begin(), sum.end()) - sum.begin());
+}
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,144 @@
+/*
+ * Several starts of eq. (1)'s farthest-point sampling and the medoid of their segmentations
+ * (core/starts.h, SupernodeNCutSegmentation::setStarts).
+ */
+#include <pcl_ncut_seg/core/centrality.h>
+#include <pcl_ncut_seg/core/pipeline.h>
+#include <pcl_ncut_seg/core/starts.h>
+#include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+
+#include "support/knn_graph.h"
+#include "support/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+using namespace pcl_ncut_seg;
+
+namespace {
+
+using Labels = std::vector<std::uint32_t>;
+
+/// Per input point, its segment in segments.
+Labels labelsOf(const std::vector<pcl::PointIndices>& segments, std::size_t n) {
+  Labels label(n, kNone);
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    for (int i : segments[s].indices)
+      label[i] = static_cast<std::uint32_t>(s);
+  return label;
+}
+
+/// Per input point, its segment when only the given start of the kept analysis is cut.
+Labels cutOneStart(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg, std::size_t start,
+                   std::size_t n) {
+  Analysis one = startAnalysis(*seg.getAnalysis(), start);
+  one.other_starts.clear();
+  PhaseTimes times;
+  const CutResult r = cut(one, seg.getParameters(), times);
+  Labels label(n, kNone);
+  for (std::size_t v = 0; v < r.point_segment.size(); ++v)
+    label[seg.getAnalysedIndices()[v]] = r.point_segment[v];
+  return label;
+}
+
+} // namespace
+
+TEST(Starts, PairDisagreementsCountThePairsSplitDifferently) {
+  // Pairs (0,2) and (1,2) are apart in a and together in b; (2,3) the other way round.
+  EXPECT_EQ(pairDisagreements({0, 0, 1, 1}, {0, 0, 0, 1}), 3u);
+  EXPECT_EQ(pairDisagreements({0, 0, 1, 1}, {7, 7, 3, 3}), 0u); // the same partition
+  EXPECT_EQ(pairDisagreements({0, 0, 0, 0}, {0, 1, 2, 3}), 6u); // every pair
+  EXPECT_EQ(pairDisagreements({}, {}), 0u);
+}
+
+TEST(Starts, TheMedoidIsThePartitionClosestToTheOthers) {
+  const Labels a = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+  Labels b = a, c = a;
+  b[2] = 1; // one point moved each way: a is one move from b and c, b two moves from c
+  c[6] = 1;
+  EXPECT_EQ(medoidPartition({&b, &a, &c}), 1u);
+  EXPECT_EQ(medoidPartition({&b, &c, &a}), 2u);
+  // Ties go to the smallest index.
+  EXPECT_EQ(medoidPartition({&b, &c}), 0u);
+  EXPECT_EQ(medoidPartition({&c, &b}), 0u);
+  EXPECT_EQ(medoidPartition({&a}), 0u);
+}
+
+TEST(Starts, EachStartBeginsAtTheNextSampleOfTheFirstChain) {
+  const test::LabeledShape hand = test::makeHand(2000, 5);
+  std::vector<float> xyz;
+  for (const auto& p : *hand.cloud)
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+  const Centrality first = computeCentrality(graph, 0, 2);
+  for (std::size_t start = 1; start < 4; ++start) {
+    const Centrality other = computeCentrality(graph, 0, 2, nullptr, {}, start);
+    ASSERT_EQ(other.samples.size(), first.samples.size());
+    EXPECT_EQ(other.samples[0], first.samples[start]);
+    // f depends on the set of samples only; the chains from some starts come back to the
+    // same set (here starts 1 and 3), others do not (start 2).
+    std::vector<std::uint32_t> a = first.samples, b = other.samples;
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    EXPECT_EQ(a == b, other.f == first.f);
+    EXPECT_EQ(a == b, start != 2);
+  }
+}
+
+TEST(Starts, TheResultIsTheMedoidOfTheStartsSegmentations) {
+  const test::LabeledShape hand = test::makeHand(4000, 3);
+  const std::size_t n = hand.cloud->size();
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(hand.cloud);
+  seg.setNumberOfThreads(2);
+  seg.setStarts(3);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  ASSERT_GT(segments.size(), 1u);
+  ASSERT_EQ(seg.getAnalysis()->other_starts.size(), 2u);
+  std::vector<Labels> each;
+  for (std::size_t s = 0; s < 3; ++s)
+    each.push_back(cutOneStart(seg, s, n));
+  const std::size_t medoid = medoidPartition({&each[0], &each[1], &each[2]});
+  EXPECT_EQ(labelsOf(segments, n), each[medoid]);
+  // The intermediate results are the medoid start's.
+  const std::vector<float> f = seg.getCentrality();
+  const Analysis& shown = startAnalysis(*seg.getAnalysis(), medoid);
+  for (std::size_t v = 0; v < shown.centrality.f.size(); ++v)
+    ASSERT_EQ(f[seg.getAnalysedIndices()[v]], shown.centrality.f[v]);
+
+  // One start is start 0 alone: the same segments as start 0 of several.
+  seg.setStarts(1);
+  seg.extract(segments);
+  EXPECT_TRUE(seg.getAnalysis()->other_starts.empty());
+  EXPECT_EQ(labelsOf(segments, n), each[0]);
+}
+
+TEST(Starts, TheSameForAnyNumberOfThreads) {
+  const test::LabeledShape hand = test::makeHand(4000, 8);
+  std::vector<Labels> results;
+  for (int threads : {1, 2}) {
+    pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+    seg.setInputCloud(hand.cloud);
+    seg.setNumberOfThreads(threads);
+    seg.setStarts(4);
+    std::vector<pcl::PointIndices> segments;
+    seg.extract(segments);
+    results.push_back(labelsOf(segments, hand.cloud->size()));
+  }
+  EXPECT_EQ(results[0], results[1]);
+}
+
+TEST(Starts, SetterKeepsTheOldValueOnABadOne) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  EXPECT_EQ(seg.getStarts(), 5);
+  seg.setStarts(0);
+  EXPECT_EQ(seg.getStarts(), 5);
+  seg.setStarts(17);
+  EXPECT_EQ(seg.getStarts(), 5);
+  seg.setStarts(1);
+  EXPECT_EQ(seg.getStarts(), 1);
+  EXPECT_EQ(Parameters::paper().centrality.starts, 1);
+}
