@@ -64,6 +64,9 @@ TEST(Starts, TheMedoidIsThePartitionClosestToTheOthers) {
   EXPECT_EQ(medoidPartition({&b, &c}), 0u);
   EXPECT_EQ(medoidPartition({&c, &b}), 0u);
   EXPECT_EQ(medoidPartition({&a}), 0u);
+  // Weights count a partition as several equal ones: c twice and b once make c the medoid.
+  EXPECT_EQ(medoidPartition({&b, &c}, {1, 2}), 1u);
+  EXPECT_EQ(medoidPartition({&b, &a, &c}, {3, 1, 1}), 0u);
 }
 
 TEST(Starts, EachStartBeginsAtTheNextSampleOfTheFirstChain) {
@@ -72,18 +75,41 @@ TEST(Starts, EachStartBeginsAtTheNextSampleOfTheFirstChain) {
   for (const auto& p : *hand.cloud)
     xyz.insert(xyz.end(), {p.x, p.y, p.z});
   const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
-  const Centrality first = computeCentrality(graph, 0, 2);
+  const std::vector<Centrality> f = computeCentralities(graph, 0, 2, nullptr, {}, 4);
+  ASSERT_EQ(f.size(), 4u);
+  EXPECT_EQ(f[0].f, computeCentrality(graph, 0, 2).f);
   for (std::size_t start = 1; start < 4; ++start) {
-    const Centrality other = computeCentrality(graph, 0, 2, nullptr, {}, start);
-    ASSERT_EQ(other.samples.size(), first.samples.size());
-    EXPECT_EQ(other.samples[0], first.samples[start]);
+    ASSERT_EQ(f[start].samples.size(), f[0].samples.size());
+    EXPECT_EQ(f[start].samples[0], f[0].samples[start]);
     // f depends on the set of samples only; the chains from some starts come back to the
     // same set (here starts 1 and 3), others do not (start 2).
-    std::vector<std::uint32_t> a = first.samples, b = other.samples;
+    std::vector<std::uint32_t> a = f[0].samples, b = f[start].samples;
     std::sort(a.begin(), a.end());
     std::sort(b.begin(), b.end());
-    EXPECT_EQ(a == b, other.f == first.f);
+    EXPECT_EQ(a == b, f[start].f == f[0].f);
     EXPECT_EQ(a == b, start != 2);
+  }
+}
+
+TEST(Starts, EachStartsCentralityIsTheMeanDistanceToItsOwnSamples) {
+  // Only the samples in which a start differs from start 0 are searched again: check the
+  // result against eq. (1) over each start's samples with Boost's Dijkstra.
+  const test::LabeledShape hand = test::makeHand(1500, 9);
+  std::vector<float> xyz;
+  for (const auto& p : *hand.cloud)
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 8);
+  const std::vector<Centrality> f = computeCentralities(graph, 0, 2, nullptr, {}, 5);
+  for (const Centrality& c : f) {
+    ASSERT_EQ(c.num_components, 1u);
+    std::vector<double> mean(graph.numVertices(), 0.0);
+    for (std::uint32_t s : c.samples) {
+      const std::vector<float> d = geodesicDistances(graph, s);
+      for (std::size_t v = 0; v < d.size(); ++v)
+        mean[v] += d[v] / static_cast<double>(c.samples.size());
+    }
+    for (std::size_t v = 0; v < mean.size(); ++v)
+      ASSERT_NEAR(c.f[v], mean[v], 1e-5 * mean[v]) << "vertex " << v;
   }
 }
 
@@ -93,19 +119,30 @@ TEST(Starts, TheResultIsTheMedoidOfTheStartsSegmentations) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(hand.cloud);
   seg.setNumberOfThreads(2);
-  seg.setStarts(3);
+  seg.setStarts(5);
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
   ASSERT_GT(segments.size(), 1u);
-  ASSERT_EQ(seg.getAnalysis()->other_starts.size(), 2u);
+  const Analysis& analysis = *seg.getAnalysis();
+  // An analysis per start with samples of its own, weighted by the starts that have them.
+  const std::size_t distinct = analysis.other_starts.size() + 1;
+  ASSERT_GT(distinct, 1u);
+  ASSERT_EQ(analysis.start_weights.size(), distinct);
+  std::uint32_t total = 0;
+  for (std::uint32_t w : analysis.start_weights)
+    total += w;
+  EXPECT_EQ(total, 5u);
   std::vector<Labels> each;
-  for (std::size_t s = 0; s < 3; ++s)
+  for (std::size_t s = 0; s < distinct; ++s)
     each.push_back(cutOneStart(seg, s, n));
-  const std::size_t medoid = medoidPartition({&each[0], &each[1], &each[2]});
+  std::vector<const Labels*> partitions;
+  for (const Labels& l : each)
+    partitions.push_back(&l);
+  const std::size_t medoid = medoidPartition(partitions, analysis.start_weights);
   EXPECT_EQ(labelsOf(segments, n), each[medoid]);
   // The intermediate results are the medoid start's.
   const std::vector<float> f = seg.getCentrality();
-  const Analysis& shown = startAnalysis(*seg.getAnalysis(), medoid);
+  const Analysis& shown = startAnalysis(analysis, medoid);
   for (std::size_t v = 0; v < shown.centrality.f.size(); ++v)
     ASSERT_EQ(f[seg.getAnalysedIndices()[v]], shown.centrality.f[v]);
 

@@ -36,35 +36,40 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
 }
 
 namespace {
-Centrality centralityStage(const CsrGraph& graph, const CentralityParams& params,
-                           unsigned num_threads, const std::uint32_t* tie_rank,
-                           const PhaseProgressFn& progress, std::size_t start) {
-  ProgressFn fraction;
-  if (progress)
-    fraction = [&progress](double done) { progress("Cen", done); };
-  const auto samples = static_cast<std::size_t>(params.samples.value_or(0));
-  if (params.mode == CentralityMode::Exact)
-    return computeCentrality(graph, samples, num_threads, tie_rank, fraction, start);
-  return computeCoarseCentrality(graph, static_cast<std::size_t>(params.representatives), samples,
-                                 num_threads, tie_rank, fraction, start);
-}
-
 void report(const PhaseProgressFn& progress, const char* phase, double fraction) {
   if (progress)
     progress(phase, fraction);
 }
 } // namespace
 
-Analysis featureStages(CsrGraph graph, const Parameters& params, const std::uint32_t* tie_rank,
-                       PhaseTimes& times, const PhaseProgressFn& progress, std::size_t start) {
+std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters& params,
+                                        const std::uint32_t* tie_rank, PhaseTimes& times,
+                                        const PhaseProgressFn& progress, std::size_t num_starts) {
+  Stopwatch clock;
+  report(progress, "Cen", 0.0);
+  ProgressFn fraction;
+  if (progress)
+    fraction = [&progress](double done) { progress("Cen", done); };
+  const CentralityParams& c = params.centrality;
+  const auto samples = static_cast<std::size_t>(c.samples.value_or(0));
+  const unsigned threads = params.execution.num_threads;
+  std::vector<Centrality> f =
+      c.mode == CentralityMode::Exact
+          ? computeCentralities(graph, samples, threads, tie_rank, fraction, num_starts)
+          : computeCoarseCentralities(graph, static_cast<std::size_t>(c.representatives), samples,
+                                      threads, tie_rank, fraction, num_starts);
+  report(progress, "Cen", 1.0);
+  times.centrality += clock.lap();
+  return f;
+}
+
+Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& params,
+                       PhaseTimes& times, const PhaseProgressFn& progress) {
   const unsigned threads = params.execution.num_threads;
   Analysis a;
   a.graph = std::move(graph);
+  a.centrality = std::move(centrality);
   Stopwatch clock;
-  report(progress, "Cen", 0.0);
-  a.centrality = centralityStage(a.graph, params.centrality, threads, tie_rank, progress, start);
-  report(progress, "Cen", 1.0);
-  times.centrality += clock.lap();
   report(progress, "Snod", 0.0);
   a.raw_supernodes =
       extractSupernodes(a.graph, a.centrality.f, params.supernodes.crossing_fraction);

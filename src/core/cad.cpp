@@ -445,7 +445,8 @@ Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normal
   CsrGraph transformed = transformGraph(graph, phi, cad.shrink, cad.stretch);
   times.knn += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  Analysis a = featureStages(std::move(transformed), params, tie_rank, times, progress);
+  std::vector<Centrality> f = centralityStage(transformed, params, tie_rank, times, progress);
+  Analysis a = featureStages(std::move(transformed), std::move(f[0]), params, times, progress);
   const auto before_angles = std::chrono::steady_clock::now();
   a.cad = true;
   // Faces end at ridges: no supernode crosses one (Sec. 7, "ridges to feature boundaries").

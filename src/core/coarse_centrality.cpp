@@ -215,15 +215,66 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
   }
   return label;
 }
+/// Step 5 of computeCoarseCentralities(): the coarse graph's f carried back to every vertex,
+/// linearly between its two nearest representatives.
+Centrality carryBack(const Centrality& cc, const std::vector<TwoLabels>& near,
+                     const std::vector<std::uint32_t>& reps, float scale, int threads) {
+  const std::size_t n = near.size();
+  Centrality out;
+  out.f.resize(n);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t>(n); ++pi) {
+    const auto p = static_cast<std::size_t>(pi);
+    const float d1 = near[p].first_dist, d2 = near[p].second_dist;
+    const float f1 = scale * cc.f[near[p].first];
+    float f;
+    if (near[p].second == kNoSource)
+      f = d1; // the component's only representative is its only sample: f = g(p, r1)
+    else if (d1 + d2 > 0.0f)
+      f = (d2 * f1 + d1 * scale * cc.f[near[p].second]) / (d1 + d2);
+    else
+      f = f1;
+    out.f[p] = f;
+  }
+  // Components: a vertex is in its representative's, and the coarse graph joins cells
+  // exactly where kNN edges do. Numbered in order of their smallest vertex.
+  out.num_components = cc.num_components;
+  out.component.resize(n);
+  {
+    std::vector<std::uint32_t> number(cc.num_components, kNoSource);
+    std::uint32_t next = 0;
+    for (std::uint32_t p = 0; p < n; ++p) {
+      std::uint32_t& id = number[cc.component[near[p].first]];
+      if (id == kNoSource)
+        id = next++;
+      out.component[p] = id;
+    }
+  }
+  out.samples.reserve(cc.samples.size());
+  for (std::uint32_t s : cc.samples)
+    out.samples.push_back(reps[s]);
+  return out;
+}
+
 } // namespace
 
 Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_representatives,
                                    std::size_t num_samples, unsigned num_threads,
-                                   const std::uint32_t* tie_rank, const ProgressFn& progress,
-                                   std::size_t start) {
+                                   const std::uint32_t* tie_rank, const ProgressFn& progress) {
+  return std::move(computeCoarseCentralities(graph, num_representatives, num_samples, num_threads,
+                                             tie_rank, progress, 1)
+                       .front());
+}
+
+std::vector<Centrality> computeCoarseCentralities(const CsrGraph& graph,
+                                                  std::size_t num_representatives,
+                                                  std::size_t num_samples, unsigned num_threads,
+                                                  const std::uint32_t* tie_rank,
+                                                  const ProgressFn& progress,
+                                                  std::size_t num_starts) {
   const std::size_t n = graph.numVertices();
   if (num_representatives == 0 || n <= num_representatives)
-    return computeCentrality(graph, num_samples, num_threads, tie_rank, progress, start);
+    return computeCentralities(graph, num_samples, num_threads, tie_rank, progress, num_starts);
 
   const CsrGraph& g = graph;
 
@@ -348,8 +399,8 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
     for (std::uint32_t i = 0; i < by_rank.size(); ++i)
       coarse_rank[by_rank[i]] = i;
   }
-  const Centrality cc =
-      computeCentrality(coarse, num_samples, num_threads, coarse_rank.data(), progress, start);
+  const std::vector<Centrality> coarse_starts = computeCentralities(
+      coarse, num_samples, num_threads, coarse_rank.data(), progress, num_starts);
 
   // The coarse graph's paths zigzag through the representatives, so its distances exceed the
   // kNN graph's by a few percent. Measure the ratio on pairs of representatives 3 to 8 radii
@@ -395,40 +446,10 @@ Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_repres
   const float scale = coarse_sum > 0.0 ? static_cast<float>(fine_sum / coarse_sum) : 1.0f;
 
   // 5. Back to every vertex, linearly between its two nearest representatives.
-  Centrality out;
-  out.f.resize(n);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::ptrdiff_t pi = 0; pi < static_cast<std::ptrdiff_t>(n); ++pi) {
-    const auto p = static_cast<std::size_t>(pi);
-    const float d1 = near[p].first_dist, d2 = near[p].second_dist;
-    const float f1 = scale * cc.f[near[p].first];
-    float f;
-    if (near[p].second == kNoSource)
-      f = d1; // the component's only representative is its only sample: f = g(p, r1)
-    else if (d1 + d2 > 0.0f)
-      f = (d2 * f1 + d1 * scale * cc.f[near[p].second]) / (d1 + d2);
-    else
-      f = f1;
-    out.f[p] = f;
-  }
-  // Components: a vertex is in its representative's, and the coarse graph joins cells
-  // exactly where kNN edges do. Numbered in order of their smallest vertex.
-  out.num_components = cc.num_components;
-  out.component.resize(n);
-  {
-    std::vector<std::uint32_t> number(cc.num_components, kNoSource);
-    std::uint32_t next = 0;
-    for (std::uint32_t p = 0; p < n; ++p) {
-      std::uint32_t& id = number[cc.component[near[p].first]];
-      if (id == kNoSource)
-        id = next++;
-      out.component[p] = id;
-    }
-  }
-  out.samples.reserve(cc.samples.size());
-  for (std::uint32_t s : cc.samples)
-    out.samples.push_back(reps[s]);
-  return out;
+  std::vector<Centrality> all;
+  for (const Centrality& cc : coarse_starts)
+    all.push_back(carryBack(cc, near, reps, scale, threads));
+  return all;
 }
 
 } // namespace pcl_ncut_seg

@@ -47,35 +47,68 @@ PhaseProgressFn startProgress(const PhaseProgressFn& progress, std::size_t start
   };
 }
 
+/// Per start, the first start with the same samples (the same f, hence the same analysis).
+std::vector<std::size_t> firstWithSameSamples(const std::vector<Centrality>& f) {
+  std::vector<std::vector<std::uint32_t>> sets;
+  for (const Centrality& c : f) {
+    sets.push_back(c.samples);
+    std::sort(sets.back().begin(), sets.back().end());
+  }
+  std::vector<std::size_t> first(f.size());
+  for (std::size_t j = 0; j < f.size(); ++j)
+    first[j] =
+        static_cast<std::size_t>(std::find(sets.begin(), sets.end(), sets[j]) - sets.begin());
+  return first;
+}
+
 /// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
-/// supernodes, once per start of eq. (1)'s sampling (core/starts.h); the bends are measured once.
+/// supernodes, once per start of eq. (1)'s sampling with its own samples (core/starts.h); the
+/// bends are measured once.
 Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress) {
   const auto starts = static_cast<std::size_t>(std::max(1, params.centrality.starts));
-  Analysis a = featureStages(std::move(graph), params, tie_rank, times,
-                             startProgress(progress, 0, starts), 0);
-  a.rim = std::move(rim);
-  for (std::size_t s = 1; s < starts; ++s) {
-    a.other_starts.push_back(featureStages(CsrGraph(a.graph), params, tie_rank, times,
-                                           startProgress(progress, s, starts), s));
-    a.other_starts.back().rim = a.rim;
+  std::vector<Centrality> f = centralityStage(graph, params, tie_rank, times, progress, starts);
+  const std::vector<std::size_t> same = firstWithSameSamples(f);
+  std::vector<std::size_t> distinct; // the starts whose samples no earlier start has
+  std::vector<std::uint32_t> weight(starts, 0);
+  for (std::size_t j = 0; j < starts; ++j) {
+    if (same[j] == j)
+      distinct.push_back(j);
+    ++weight[same[j]];
+  }
+  std::vector<Analysis> each;
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    CsrGraph g;
+    if (i + 1 < distinct.size())
+      g = graph; // a copy for each analysis but the last
+    else
+      g = std::move(graph);
+    each.push_back(featureStages(std::move(g), std::move(f[distinct[i]]), params, times,
+                                 startProgress(progress, i, distinct.size())));
+    each.back().rim = rim;
   }
   const CutNeeds needs = cutNeeds(params);
   const bool creases = splitsCreases(params);
-  if (!creases && !needs.concavity && !needs.crease && !needs.rim)
-    return a;
-  // Measured between the supernodes, like eq. (8): their time counts as refinement time.
-  Stopwatch clock;
-  const SurfaceBends bends = surfaceBends(a.graph, xyz.data(), params.execution.num_threads);
-  for (std::size_t s = 0; s < starts; ++s) {
-    Analysis& one = s == 0 ? a : a.other_starts[s - 1];
-    if (creases)
-      creaseStage(one, xyz.data(), bends, params);
-    contactStage(one, xyz.data(), bends, needs, params.execution.num_threads);
+  if (creases || needs.concavity || needs.crease || needs.rim) {
+    // Measured between the supernodes, like eq. (8): their time counts as refinement time.
+    Stopwatch clock;
+    const SurfaceBends bends =
+        surfaceBends(each[0].graph, xyz.data(), params.execution.num_threads);
+    for (Analysis& one : each) {
+      if (creases)
+        creaseStage(one, xyz.data(), bends, params);
+      contactStage(one, xyz.data(), bends, needs, params.execution.num_threads);
+    }
+    times.refinement += clock.lap();
   }
-  times.refinement += clock.lap();
+  Analysis a = std::move(each[0]);
+  for (std::size_t i = 1; i < each.size(); ++i)
+    a.other_starts.push_back(std::move(each[i]));
+  if (starts > 1)
+    for (std::size_t j : distinct)
+      a.start_weights.push_back(weight[j]);
   return a;
 }
 
@@ -154,7 +187,7 @@ CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& ti
   std::vector<const std::vector<std::uint32_t>*> partitions;
   for (const CutResult& r : results)
     partitions.push_back(&r.point_segment);
-  const std::size_t start = medoidPartition(partitions);
+  const std::size_t start = medoidPartition(partitions, analysis.start_weights);
   times.points += clock.lap();
   CutResult r = std::move(results[start]);
   r.start = start;

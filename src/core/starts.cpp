@@ -35,14 +35,16 @@ std::uint64_t pairDisagreements(const std::vector<std::uint32_t>& a,
   return together_a + together_b - 2 * together_both;
 }
 
-std::size_t medoidPartition(const std::vector<const std::vector<std::uint32_t>*>& partitions) {
+std::size_t medoidPartition(const std::vector<const std::vector<std::uint32_t>*>& partitions,
+                            const std::vector<std::uint32_t>& weights) {
   const std::size_t m = partitions.size();
+  auto weight = [&](std::size_t i) { return i < weights.size() ? weights[i] : 1u; };
   std::vector<std::uint64_t> sum(m, 0);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t j = i + 1; j < m; ++j) {
       const std::uint64_t d = pairDisagreements(*partitions[i], *partitions[j]);
-      sum[i] += d;
-      sum[j] += d;
+      sum[i] += weight(j) * d;
+      sum[j] += weight(i) * d;
     }
   return static_cast<std::size_t>(std::min_element(sum.begin(), sum.end()) - sum.begin());
 }

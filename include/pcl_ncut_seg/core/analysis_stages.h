@@ -20,14 +20,19 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
                     const GraphParams& params, bool may_denoise, unsigned num_threads,
                     NoiseTest* noise = nullptr);
 
-/** \brief Secs. 4.1-4.3 on a graph: the centrality f (eq. 1), the supernodes of its gradient
- * flow (4.2), the radii r(p), local refinement (4.3), feature statistics and eq. (8).
- * Times are added to times.centrality, .supernodes, .refinement.
- * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index)
- * \param[in] start     which of step 4's starts the samples of eq. (1) take (core/starts.h) */
-Analysis featureStages(CsrGraph graph, const Parameters& params, const std::uint32_t* tie_rank,
-                       PhaseTimes& times, const PhaseProgressFn& progress, std::size_t start = 0);
-
+/** \brief Centrality stage (Sec. 4.1): f of eq. (1) from each of num_starts starts of the
+ * farthest-point sampling (computeCentralities(), or the coarse graph's in Fast mode).
+ * Time is added to times.centrality.
+ * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index) */
+std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters& params,
+                                        const std::uint32_t* tie_rank, PhaseTimes& times,
+                                        const PhaseProgressFn& progress,
+                                        std::size_t num_starts = 1);
+/** \brief Secs. 4.2-4.3 on a graph and its f: the supernodes of the gradient flow (4.2), the
+ * radii r(p), local refinement (4.3), feature statistics and eq. (8). Times are added to
+ * times.supernodes and .refinement. */
+Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& params,
+                       PhaseTimes& times, const PhaseProgressFn& progress);
 /** \brief Oriented normals and the model's mean bend per kNN edge, for the crease and
  * concavity stages (core/concavity.h). */
 struct SurfaceBends {

@@ -81,12 +81,11 @@ WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const Feature
                                      const SimilarityParams& params);
 
 /** \brief The expensive stage in CAD mode: smooth the normals, transform the graph (Sec. 7),
- * run Secs. 4.1-4.3 on the transformed graph (featureStages()), then measure the face angles
- * between the refined supernodes. The time of the normal smoothing and transformation is added to
- * times.knn, as in the paper's Table 1.
- * \param[in] graph    the kNN graph with Euclidean lengths
- * \param[in] xyz      3 floats per vertex
- * \param[in] normals  3 floats per vertex, approximate normals (any orientation)
+ * run Secs. 4.1-4.3 on the transformed graph (centralityStage(), featureStages()), then measure the
+ * face angles between the refined supernodes. The time of the normal smoothing and transformation
+ * is added to times.knn, as in the paper's Table 1. \param[in] graph    the kNN graph with
+ * Euclidean lengths \param[in] xyz      3 floats per vertex \param[in] normals  3 floats per
+ * vertex, approximate normals (any orientation)
  */
 Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
                     const Parameters& params, const std::uint32_t* tie_rank, PhaseTimes& times,

@@ -44,13 +44,22 @@ using ProgressFn = std::function<void(double)>;
  *                         does not depend on how the caller numbered the vertices
  * \param[in] progress     if set, called from the calling thread with the fraction of the full
  *                         searches done
- * \param[in] start        0: the first sample as above; j > 0: the j-th sample of that chain
- *                         (capped at the component's samples) is the first one instead, another
- *                         of step 4's arbitrary starts (core/starts.h)
  */
 Centrality computeCentrality(const CsrGraph& graph, std::size_t num_samples, unsigned num_threads,
                              const std::uint32_t* tie_rank = nullptr,
-                             const ProgressFn& progress = {}, std::size_t start = 0);
+                             const ProgressFn& progress = {});
+
+/** \brief computeCentrality() from num_starts starts of step 4 (core/starts.h): start 0 is
+ * computeCentrality()'s; start j's first sample in each component is start 0's j-th sample
+ * (its last when the component has fewer). Each start's f is bit-identical to a search from
+ * each of its samples, but only the samples in which a start differs from start 0 are searched
+ * again (starts often share most of their samples, and some come back to start 0's set).
+ * \return num_starts centralities (at least one) */
+std::vector<Centrality> computeCentralities(const CsrGraph& graph, std::size_t num_samples,
+                                            unsigned num_threads,
+                                            const std::uint32_t* tie_rank = nullptr,
+                                            const ProgressFn& progress = {},
+                                            std::size_t num_starts = 1);
 
 /** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
  * Unreachable vertices get +infinity. */

@@ -25,7 +25,6 @@ namespace pcl_ncut_seg {
  *    keeps its slope and gains no plateaus or spurious extrema at the representatives. A
  *    component with a single representative gets f(p) = d1 (its one sample's distance).
  *
- * start: as computeCentrality()'s, on the coarse graph.
  * With n <= num_representatives (or num_representatives == 0) this is computeCentrality().
  * Samples are returned as vertex ids of the input graph. Deterministic for any number of
  * threads.
@@ -33,6 +32,15 @@ namespace pcl_ncut_seg {
 Centrality computeCoarseCentrality(const CsrGraph& graph, std::size_t num_representatives,
                                    std::size_t num_samples, unsigned num_threads,
                                    const std::uint32_t* tie_rank = nullptr,
-                                   const ProgressFn& progress = {}, std::size_t start = 0);
+                                   const ProgressFn& progress = {});
+
+/** \brief computeCoarseCentrality() from num_starts starts (computeCentralities() on the coarse
+ * graph, which is built once). */
+std::vector<Centrality> computeCoarseCentralities(const CsrGraph& graph,
+                                                  std::size_t num_representatives,
+                                                  std::size_t num_samples, unsigned num_threads,
+                                                  const std::uint32_t* tie_rank = nullptr,
+                                                  const ProgressFn& progress = {},
+                                                  std::size_t num_starts = 1);
 
 } // namespace pcl_ncut_seg

@@ -89,10 +89,13 @@ struct Analysis {
   std::vector<float> rim_xyz, rim_normals;
   bool has_rim_planes = false;
   /// centrality.starts > 1 (core/starts.h): the analyses from the other starts of eq. (1)'s
-  /// sampling, each complete; this one is start 0.
+  /// sampling that have samples of their own, each complete; this one is start 0.
   std::vector<Analysis> other_starts;
+  /// With other starts: per analysis (this one first), how many starts have its samples.
+  std::vector<std::uint32_t> start_weights;
 };
-/** \brief The analysis of the given start: 0 is analysis itself, s > 0 its other_starts[s - 1]. */
+/** \brief The analysis of a start with samples of its own: 0 is analysis itself, s > 0 its
+ * other_starts[s - 1]. */
 const Analysis& startAnalysis(const Analysis& analysis, std::size_t start);
 
 /** \brief What the cut stages need the analysis to have measured. */
@@ -119,7 +122,7 @@ struct CutResult {
   std::vector<std::uint32_t> supernode_segment; ///< per refined supernode, its segment
   std::vector<std::uint32_t> point_segment;     ///< per vertex, its segment
   std::size_t num_segments = 0;
-  std::size_t start = 0; ///< the start whose analysis gave it (startAnalysis(); core/starts.h)
+  std::size_t start = 0; ///< the analysis that gave it (startAnalysis(); core/starts.h)
 };
 
 /** \brief Run every cut stage in order on an analysis that serves() the parameters. Segments

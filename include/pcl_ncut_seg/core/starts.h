@@ -21,9 +21,12 @@ std::uint64_t pairDisagreements(const std::vector<std::uint32_t>& a,
                                 const std::vector<std::uint32_t>& b);
 
 /** \brief The medoid of partitions of the same points: the one whose summed pairDisagreements()
- * with all the others is the smallest; ties to the smallest index.
+ * with all the others, each counted weight times, is the smallest; ties to the smallest index.
  * \param[in] partitions  at least one, each per point its segment, all of one size
+ * \param[in] weights     per partition, how many times it counts (a partition that stands for
+ *                        several equal ones); empty: once each
  * \return its index in partitions */
-std::size_t medoidPartition(const std::vector<const std::vector<std::uint32_t>*>& partitions);
+std::size_t medoidPartition(const std::vector<const std::vector<std::uint32_t>*>& partitions,
+                            const std::vector<std::uint32_t>& weights = {});
 
 } // namespace pcl_ncut_seg
