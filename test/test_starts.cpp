@@ -168,6 +168,18 @@ TEST(Starts, TheSameForAnyNumberOfThreads) {
   EXPECT_EQ(results[0], results[1]);
 }
 
+TEST(Starts, AnOpenViewHasOneStart) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(test::discView(4, 0.02f));
+  seg.setStarts(5);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  ASSERT_FALSE(segments.empty());
+  EXPECT_FALSE(seg.getAnalysis()->rim.empty());
+  EXPECT_TRUE(seg.getAnalysis()->other_starts.empty());
+  EXPECT_TRUE(seg.getAnalysis()->start_weights.empty());
+}
+
 TEST(Starts, SetterKeepsTheOldValueOnABadOne) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   EXPECT_EQ(seg.getStarts(), 5);

@@ -85,7 +85,8 @@ struct CentralityParams {
   int representatives = 20000; ///< Fast: points of the coarse graph (smaller inputs: exact)
   /// Extension (core/starts.h): step 4's arbitrary first sample taken this many times (the
   /// first samples of one farthest-point chain), a segmentation from each, and the one closest
-  /// to the others kept. 1: one start, the paper. Not in CAD mode.
+  /// to the others kept. 1: one start, the paper. Not in CAD mode, nor on an open view (a
+  /// cloud with a rim, core/rim_merge.h), which gets one start.
   int starts = 5;
 };
 

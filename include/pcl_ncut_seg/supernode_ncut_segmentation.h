@@ -107,7 +107,7 @@ public:
   void setNumberOfRepresentatives(int representatives);
   int getNumberOfRepresentatives() const { return params_.centrality.representatives; }
   /** \param[in] starts  centrality.starts, in [1, 16]; 1: one start of the farthest-point
-   * sampling, as the paper */
+   * sampling, as the paper. CAD mode and open views (a cloud with a rim) use one. */
   void setStarts(int starts);
   int getStarts() const { return params_.centrality.starts; }
   /** \param[in] fraction  supernodes.crossing_fraction, in [0, 1] */

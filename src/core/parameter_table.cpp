@@ -327,7 +327,7 @@ std::vector<ParameterInfo> makeTable() {
       row("starts", "centrality.starts", S::Centrality, K::Integer, "S",
           "farthest-point sampling of eq. (1) from S starts (the first S samples of one chain), "
           "a segmentation from each; the one closest to the others by Rand index is kept (1: "
-          "one start, the paper; not in CAD mode)",
+          "one start, the paper; CAD mode and open views: one)",
           false),
       closed(1, 16), FIELD(centrality.starts)));
   // Supernodes (Sec. 4.2)

@@ -68,7 +68,10 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress) {
-  const auto starts = static_cast<std::size_t>(std::max(1, params.centrality.starts));
+  // One view (it has a rim): one start. Its parts are decided more by the rim stages than by
+  // the start, and a depth camera's frame rate counts (docs/views.md).
+  const auto starts =
+      rim.empty() ? static_cast<std::size_t>(std::max(1, params.centrality.starts)) : 1;
   std::vector<Centrality> f = centralityStage(graph, params, tie_rank, times, progress, starts);
   const std::vector<std::size_t> same = firstWithSameSamples(f);
   std::vector<std::size_t> distinct; // the starts whose samples no earlier start has
