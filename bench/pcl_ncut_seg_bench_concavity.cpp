@@ -133,8 +133,10 @@ int main(int argc, char** argv) {
   pcl_ncut_seg::PhaseTimes times;
   pcl_ncut_seg::Parameters params;
   params.execution.num_threads = static_cast<unsigned>(std::max(threads, 0));
+  std::vector<pcl_ncut_seg::Centrality> f =
+      pcl_ncut_seg::centralityStage(graph, params, nullptr, times, nullptr);
   const pcl_ncut_seg::Analysis analysis =
-      pcl_ncut_seg::featureStages(std::move(graph), params, nullptr, times, nullptr);
+      pcl_ncut_seg::featureStages(std::move(graph), std::move(f[0]), params, times, nullptr);
   const auto& label = analysis.supernodes.label;
 
   const std::size_t base = startPeakMemory();
