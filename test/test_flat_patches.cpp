@@ -149,11 +149,15 @@ TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
   // largest-gap rule (7 / 12 / 20 segments to 4 / 9 / 15 over the three seeds). With flat
   // patches, the cuts left are around the rim, a ridge of the centrality, whose boundaries are
   // short: the two rules keep about as many (4 / 9 / 9 and 4 / 9 / 10), printed only.
+  // One start, so that both rules cut the same supernodes: with several, each rule's result is
+  // the medoid of its own cuts, possibly of another start's supernodes (with the default 5,
+  // seed 1 gives 7 segments with either rule).
   const TriangleMesh cup = openCup();
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = sampledCloud(cup, 6000, seed);
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
+    seg.setStarts(1);
     std::vector<pcl::PointIndices> segments;
     for (const double flat : {0.0, 0.1}) {
       seg.setFlatElongation(flat);

@@ -63,26 +63,37 @@ std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters&
   return f;
 }
 
-Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& params,
-                       PhaseTimes& times, const PhaseProgressFn& progress) {
-  const unsigned threads = params.execution.num_threads;
+Analysis supernodeStage(CsrGraph graph, Centrality centrality, const Parameters& params,
+                        PhaseTimes& times) {
+  Stopwatch clock;
   Analysis a;
   a.graph = std::move(graph);
   a.centrality = std::move(centrality);
-  Stopwatch clock;
-  report(progress, "Snod", 0.0);
   a.raw_supernodes =
       extractSupernodes(a.graph, a.centrality.f, params.supernodes.crossing_fraction);
-  report(progress, "Snod", 1.0);
   times.supernodes += clock.lap();
-  report(progress, "LRef", 0.0);
+  return a;
+}
+
+void refinementStage(Analysis& a, const Parameters& params, PhaseTimes& times) {
+  Stopwatch clock;
+  const unsigned threads = params.execution.num_threads;
   a.radii = pointRadii(a.graph, a.centrality.f, threads);
   a.supernodes =
       refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label, threads);
-  report(progress, "LRef", 1.0);
   times.refinement += clock.lap();
+}
+
+Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& params,
+                       PhaseTimes& times, const PhaseProgressFn& progress) {
+  report(progress, "Snod", 0.0);
+  Analysis a = supernodeStage(std::move(graph), std::move(centrality), params, times);
+  report(progress, "Snod", 1.0);
+  report(progress, "LRef", 0.0);
+  refinementStage(a, params, times);
+  report(progress, "LRef", 1.0);
   return a;
 }
 

@@ -37,16 +37,6 @@ bool splitsCreases(const Parameters& params) {
   return params.refinement.crease_split || params.refinement.crease_cut;
 }
 
-/// Progress of one of several starts: each start's phases fill its share of every phase.
-PhaseProgressFn startProgress(const PhaseProgressFn& progress, std::size_t start,
-                              std::size_t starts) {
-  if (!progress || starts == 1)
-    return progress;
-  return [progress, start, starts](const char* phase, double done) {
-    progress(phase, (static_cast<double>(start) + done) / static_cast<double>(starts));
-  };
-}
-
 /// Per start, the first start with the same samples (the same f, hence the same analysis).
 std::vector<std::size_t> firstWithSameSamples(const std::vector<Centrality>& f) {
   std::vector<std::vector<std::uint32_t>> sets;
@@ -81,16 +71,30 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
       distinct.push_back(j);
     ++weight[same[j]];
   }
+  // Phase by phase over the starts, so that progress reports each phase once.
+  const auto share = [&distinct](std::size_t done) {
+    return static_cast<double>(done) / static_cast<double>(distinct.size());
+  };
   std::vector<Analysis> each;
+  if (progress)
+    progress("Snod", 0.0);
   for (std::size_t i = 0; i < distinct.size(); ++i) {
     CsrGraph g;
     if (i + 1 < distinct.size())
       g = graph; // a copy for each analysis but the last
     else
       g = std::move(graph);
-    each.push_back(featureStages(std::move(g), std::move(f[distinct[i]]), params, times,
-                                 startProgress(progress, i, distinct.size())));
+    each.push_back(supernodeStage(std::move(g), std::move(f[distinct[i]]), params, times));
     each.back().rim = rim;
+    if (progress)
+      progress("Snod", share(i + 1));
+  }
+  if (progress)
+    progress("LRef", 0.0);
+  for (std::size_t i = 0; i < distinct.size(); ++i) {
+    refinementStage(each[i], params, times);
+    if (progress)
+      progress("LRef", share(i + 1));
   }
   const CutNeeds needs = cutNeeds(params);
   const bool creases = splitsCreases(params);

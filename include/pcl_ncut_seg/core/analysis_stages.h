@@ -28,9 +28,14 @@ std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters&
                                         const std::uint32_t* tie_rank, PhaseTimes& times,
                                         const PhaseProgressFn& progress,
                                         std::size_t num_starts = 1);
-/** \brief Secs. 4.2-4.3 on a graph and its f: the supernodes of the gradient flow (4.2), the
- * radii r(p), local refinement (4.3), feature statistics and eq. (8). Times are added to
- * times.supernodes and .refinement. */
+/** \brief Supernode stage (Sec. 4.2) on a graph and its f: the supernodes of the gradient
+ * flow. Sets graph, centrality and raw_supernodes; time is added to times.supernodes. */
+Analysis supernodeStage(CsrGraph graph, Centrality centrality, const Parameters& params,
+                        PhaseTimes& times);
+/** \brief Refinement stage (Sec. 4.3) after supernodeStage(): the radii r(p), local
+ * refinement, feature statistics and eq. (8). Time is added to times.refinement. */
+void refinementStage(Analysis& analysis, const Parameters& params, PhaseTimes& times);
+/** \brief supernodeStage() then refinementStage(), each reported as a phase ("Snod", "LRef"). */
 Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& params,
                        PhaseTimes& times, const PhaseProgressFn& progress);
 /** \brief Oriented normals and the model's mean bend per kNN edge, for the crease and
