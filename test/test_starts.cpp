@@ -21,6 +21,14 @@ namespace {
 
 using Labels = std::vector<std::uint32_t>;
 
+/// The kNN graph of a generated hand of n points.
+CsrGraph handGraph(std::size_t n, std::uint64_t seed, std::size_t k) {
+  std::vector<float> xyz;
+  for (const auto& p : *test::makeHand(n, seed).cloud)
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  return test::kdTreeKnnGraph(xyz, k);
+}
+
 /// Per input point, its segment in segments.
 Labels labelsOf(const std::vector<pcl::PointIndices>& segments, std::size_t n) {
   Labels label(n, kNone);
@@ -70,11 +78,7 @@ TEST(Starts, TheMedoidIsThePartitionClosestToTheOthers) {
 }
 
 TEST(Starts, EachStartBeginsAtTheNextSampleOfTheFirstChain) {
-  const test::LabeledShape hand = test::makeHand(2000, 5);
-  std::vector<float> xyz;
-  for (const auto& p : *hand.cloud)
-    xyz.insert(xyz.end(), {p.x, p.y, p.z});
-  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+  const CsrGraph graph = handGraph(2000, 5, 10);
   const std::vector<Centrality> f = computeCentralities(graph, 0, 2, nullptr, {}, 4);
   ASSERT_EQ(f.size(), 4u);
   EXPECT_EQ(f[0].f, computeCentrality(graph, 0, 2).f);
@@ -94,11 +98,7 @@ TEST(Starts, EachStartBeginsAtTheNextSampleOfTheFirstChain) {
 TEST(Starts, EachStartsCentralityIsTheMeanDistanceToItsOwnSamples) {
   // Only the samples in which a start differs from start 0 are searched again: check the
   // result against eq. (1) over each start's samples with Boost's Dijkstra.
-  const test::LabeledShape hand = test::makeHand(1500, 9);
-  std::vector<float> xyz;
-  for (const auto& p : *hand.cloud)
-    xyz.insert(xyz.end(), {p.x, p.y, p.z});
-  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 8);
+  const CsrGraph graph = handGraph(1500, 9, 8);
   const std::vector<Centrality> f = computeCentralities(graph, 0, 2, nullptr, {}, 5);
   for (const Centrality& c : f) {
     ASSERT_EQ(c.num_components, 1u);
