@@ -23,8 +23,9 @@ using Labels = std::vector<std::uint32_t>;
 
 /// The kNN graph of a generated hand of n points.
 CsrGraph handGraph(std::size_t n, std::uint64_t seed, std::size_t k) {
+  const test::LabeledShape hand = test::makeHand(n, seed);
   std::vector<float> xyz;
-  for (const auto& p : *test::makeHand(n, seed).cloud)
+  for (const auto& p : *hand.cloud)
     xyz.insert(xyz.end(), {p.x, p.y, p.z});
   return test::kdTreeKnnGraph(xyz, k);
 }
