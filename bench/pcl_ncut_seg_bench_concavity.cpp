@@ -146,9 +146,9 @@ int main(int argc, char** argv) {
   for (int r = 0; r < repeat; ++r) {
     std::vector<float>().swap(normals);
     const double t0 = now(), c0 = cpuNow();
-    normals = pcl_ncut_seg::orientedNormals(analysis.graph, xyz.data());
+    normals = pcl_ncut_seg::orientedNormals(*analysis.graph, xyz.data());
     const double t1 = now(), c1 = cpuNow();
-    concavity = pcl_ncut_seg::contactConcavity(analysis.graph, xyz.data(), normals, label);
+    concavity = pcl_ncut_seg::contactConcavity(*analysis.graph, xyz.data(), normals, label);
     const double t2 = now(), c2 = cpuNow();
     t_normals = std::min(t_normals, t1 - t0);
     t_contact = std::min(t_contact, t2 - t1);
@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
   }
   const std::size_t peak = procStatusBytes("VmHWM");
   std::printf("n=%zu edges=%zu supernodes=%zu contacts=%zu\n", n,
-              analysis.graph.numDirectedEdges() / 2, analysis.supernodes.size(), concavity.size());
+              analysis.graph->numDirectedEdges() / 2, analysis.supernodes.size(), concavity.size());
   std::printf("wall: orientedNormals %.4f s, contactConcavity %.4f s, total %.4f s; cpu: %.4f s, "
               "%.4f s, total %.4f s (best of %d); peak beyond the start %.1f B/pt\n",
               t_normals, t_contact, t_normals + t_contact, cpu_normals, cpu_contact,

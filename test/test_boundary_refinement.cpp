@@ -67,7 +67,7 @@ Segmented segment(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int count, d
 std::vector<std::size_t>
 componentsPerSegment(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg,
                      const std::vector<int>& labels, std::size_t count) {
-  const CsrGraph& graph = seg.getAnalysis()->graph;
+  const CsrGraph& graph = *seg.getAnalysis()->graph;
   const std::vector<int>& index = seg.getAnalysedIndices();
   std::vector<std::uint32_t> vertex_label(index.size());
   for (std::size_t v = 0; v < index.size(); ++v)

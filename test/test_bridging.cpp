@@ -106,7 +106,7 @@ TEST(BridgeComponents, ThreePiecesInAChainGetTwoBridges) {
 
 namespace {
 std::size_t analysedComponents(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg) {
-  return components(seg.getAnalysis()->graph);
+  return components(*seg.getAnalysis()->graph);
 }
 } // namespace
 

@@ -63,14 +63,14 @@ std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters&
   return f;
 }
 
-Analysis supernodeStage(CsrGraph graph, Centrality centrality, const Parameters& params,
-                        PhaseTimes& times) {
+Analysis supernodeStage(std::shared_ptr<const CsrGraph> graph, Centrality centrality,
+                        const Parameters& params, PhaseTimes& times) {
   Stopwatch clock;
   Analysis a;
   a.graph = std::move(graph);
   a.centrality = std::move(centrality);
   a.raw_supernodes =
-      extractSupernodes(a.graph, a.centrality.f, params.supernodes.crossing_fraction);
+      extractSupernodes(*a.graph, a.centrality.f, params.supernodes.crossing_fraction);
   times.supernodes += clock.lap();
   return a;
 }
@@ -78,18 +78,19 @@ Analysis supernodeStage(CsrGraph graph, Centrality centrality, const Parameters&
 void refinementStage(Analysis& a, const Parameters& params, PhaseTimes& times) {
   Stopwatch clock;
   const unsigned threads = params.execution.num_threads;
-  a.radii = pointRadii(a.graph, a.centrality.f, threads);
+  a.radii = pointRadii(*a.graph, a.centrality.f, threads);
   a.supernodes =
-      refineSupernodes(a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
+      refineSupernodes(*a.graph, a.centrality.f, a.radii, a.raw_supernodes, params.refinement);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
-  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label, threads);
+  a.conn = supernodeConnectivity(*a.graph, a.centrality.f, a.supernodes.label, threads);
   times.refinement += clock.lap();
 }
 
 Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& params,
                        PhaseTimes& times, const PhaseProgressFn& progress) {
   report(progress, "Snod", 0.0);
-  Analysis a = supernodeStage(std::move(graph), std::move(centrality), params, times);
+  Analysis a = supernodeStage(std::make_shared<const CsrGraph>(std::move(graph)),
+                              std::move(centrality), params, times);
   report(progress, "Snod", 1.0);
   report(progress, "LRef", 0.0);
   refinementStage(a, params, times);
@@ -113,12 +114,12 @@ void creaseStage(Analysis& a, const float* xyz, const SurfaceBends& bends,
   crease.area_fraction = params.refinement.area_fraction;
   crease.num_threads = params.execution.num_threads;
   std::size_t splits = 0;
-  a.supernodes = splitAtCreases(a.graph, xyz, bends.normals, a.centrality.f, a.radii, a.supernodes,
+  a.supernodes = splitAtCreases(*a.graph, xyz, bends.normals, a.centrality.f, a.radii, a.supernodes,
                                 crease, &splits);
   if (splits == 0)
     return;
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
-  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label,
+  a.conn = supernodeConnectivity(*a.graph, a.centrality.f, a.supernodes.label,
                                  params.execution.num_threads);
 }
 
@@ -126,11 +127,11 @@ void contactStage(Analysis& a, const float* xyz, const SurfaceBends& bends, cons
                   unsigned num_threads) {
   if (needs.concavity)
     a.concavity =
-        contactConcavity(a.graph, xyz, bends.normals, a.supernodes.label, bends.typical_bend);
+        contactConcavity(*a.graph, xyz, bends.normals, a.supernodes.label, bends.typical_bend);
   if (needs.crease)
-    a.crease = edgeCreases(a.graph, xyz, bends.normals, num_threads, bends.typical_bend);
+    a.crease = edgeCreases(*a.graph, xyz, bends.normals, num_threads, bends.typical_bend);
   if (needs.rim && !a.rim.empty()) {
-    a.rim_xyz.assign(xyz, xyz + 3 * a.graph.numVertices());
+    a.rim_xyz.assign(xyz, xyz + 3 * a.graph->numVertices());
     a.rim_normals = bends.normals;
   }
   a.has_rim_planes = needs.rim;

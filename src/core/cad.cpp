@@ -454,8 +454,8 @@ Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normal
       std::ceil(params.refinement.area_fraction * double(graph.numVertices())));
   a.supernodes = splitAtRidges(graph, xyz, ridge, a.supernodes.label, min_points);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
-  a.conn = supernodeConnectivity(a.graph, a.centrality.f, a.supernodes.label);
-  a.face_angles = faceContactAngles(a.graph, xyz, a.supernodes.label, ridge);
+  a.conn = supernodeConnectivity(*a.graph, a.centrality.f, a.supernodes.label);
+  a.face_angles = faceContactAngles(*a.graph, xyz, a.supernodes.label, ridge);
   times.refinement +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - before_angles).count();
   return a;

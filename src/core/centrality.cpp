@@ -180,6 +180,38 @@ private:
 
 using Task = std::pair<std::uint32_t, std::uint32_t>; ///< (position, component)
 
+/// A full search from each of num_tasks samples on `threads` threads, the tasks taken in
+/// order. On thread t: prepare(t) first; then, per task i, taskAt(i) (which may wait until
+/// task i exists) gives the sample, and read(t, i, d) reads its distances d on the sample's
+/// component c, which are reset to +inf afterwards. The calling thread reports progress
+/// share0 + share * (tasks done) / num_tasks.
+template <class Prepare, class TaskAt, class Read>
+void searchFromTasks(const CsrGraph& g, const Layout& l, std::size_t num_tasks, int threads,
+                     Prepare prepare, TaskAt taskAt, Read read, const ProgressFn& progress,
+                     double share0, double share) {
+  std::atomic<std::size_t> next{0}, done{0};
+#pragma omp parallel num_threads(threads)
+  {
+    int t = 0;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+#endif
+    prepare(t);
+    std::vector<float> d(g.numVertices(), kInf);
+    BucketDijkstra full(g);
+    for (std::size_t i = next++; i < num_tasks; i = next++) {
+      const Task task = taskAt(i);
+      full.run(task.first, d.data());
+      read(t, i, d);
+      for (std::uint32_t p = l.begin[task.second]; p < l.begin[task.second + 1]; ++p)
+        d[p] = kInf;
+      const std::size_t finished = ++done;
+      if (t == 0 && progress) // the calling thread reports
+        progress(share0 + share * static_cast<double>(finished) / static_cast<double>(num_tasks));
+    }
+  }
+}
+
 /// Start 0: its samples (tasks, in the order chosen) and, per position, the fixed-point sum of
 /// the distances to them (steps 5a-b). The full searches are summed in fixed point so that
 /// the sum does not depend on the order, hence not on the number of threads. The calling
@@ -216,33 +248,24 @@ std::vector<std::int64_t> startZeroSums(const CsrGraph& g, Layout& l, Chains& ch
   const int threads =
       std::max(1, std::min<int>(usableThreads(num_threads), static_cast<int>(num_tasks)));
   std::vector<std::vector<std::int64_t>> partial(threads);
-  std::atomic<std::size_t> next{0}, done{0};
-#pragma omp parallel num_threads(threads)
-  {
-    int t = 0;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-#endif
-    if (t == 0)
-      chooseSamples();
-    std::vector<std::int64_t>& acc = partial[t];
-    acc.assign(n, 0);
-    std::vector<float> d(n, kInf);
-    BucketDijkstra full(g);
-    for (std::size_t i = next++; i < num_tasks; i = next++) {
-      while (published.load(std::memory_order_acquire) <= i)
-        std::this_thread::yield(); // the calling thread is still choosing sample i
-      const auto [sample, c] = tasks[i];
-      full.run(sample, d.data());
-      for (std::uint32_t p = l.begin[c]; p < l.begin[c + 1]; ++p) {
-        acc[p] += l.fixedPoint(d[p], c);
-        d[p] = kInf;
-      }
-      const std::size_t finished = ++done;
-      if (t == 0 && progress) // the calling thread reports
-        progress(share * static_cast<double>(finished) / static_cast<double>(num_tasks));
-    }
-  }
+  searchFromTasks(
+      g, l, num_tasks, threads,
+      [&](int t) {
+        if (t == 0)
+          chooseSamples();
+        partial[t].assign(n, 0);
+      },
+      [&](std::size_t i) {
+        while (published.load(std::memory_order_acquire) <= i)
+          std::this_thread::yield(); // the calling thread is still choosing sample i
+        return tasks[i];
+      },
+      [&](int t, std::size_t i, const std::vector<float>& d) {
+        const std::uint32_t c = tasks[i].second;
+        for (std::uint32_t p = l.begin[c]; p < l.begin[c + 1]; ++p)
+          partial[t][p] += l.fixedPoint(d[p], c);
+      },
+      progress, 0.0, share);
   std::vector<std::int64_t> sum(n, 0);
   for (const auto& acc : partial)
     for (std::uint32_t p = 0; p < n; ++p)
@@ -296,34 +319,23 @@ void otherStartSums(const CsrGraph& g, const Layout& l, Chains& chains,
   const int threads =
       std::max(1, std::min<int>(usableThreads(num_threads), static_cast<int>(extra.size())));
   std::vector<std::vector<std::int64_t>> diff(std::size_t(threads) * num_starts);
-  std::atomic<std::size_t> next{0}, done{0};
-#pragma omp parallel num_threads(threads)
-  {
-    int t = 0;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-#endif
-    for (std::size_t j = 1; j < num_starts; ++j)
-      diff[std::size_t(t) * num_starts + j].assign(n, 0);
-    std::vector<float> d(n, kInf);
-    BucketDijkstra full(g);
-    for (std::size_t i = next++; i < extra.size(); i = next++) {
-      const auto [sample, c] = extra[i];
-      full.run(sample, d.data());
-      for (std::size_t j = 1; j < num_starts; ++j)
-        if (const std::int32_t w = weight[i * num_starts + j]; w != 0) {
-          std::vector<std::int64_t>& acc = diff[std::size_t(t) * num_starts + j];
-          for (std::uint32_t p = l.begin[c]; p < l.begin[c + 1]; ++p)
-            acc[p] += w * l.fixedPoint(d[p], c);
-        }
-      for (std::uint32_t p = l.begin[c]; p < l.begin[c + 1]; ++p)
-        d[p] = kInf;
-      const std::size_t finished = ++done;
-      if (t == 0 && progress)
-        progress(share +
-                 (1.0 - share) * static_cast<double>(finished) / static_cast<double>(extra.size()));
-    }
-  }
+  searchFromTasks(
+      g, l, extra.size(), threads,
+      [&](int t) {
+        for (std::size_t j = 1; j < num_starts; ++j)
+          diff[std::size_t(t) * num_starts + j].assign(n, 0);
+      },
+      [&](std::size_t i) { return extra[i]; },
+      [&](int t, std::size_t i, const std::vector<float>& d) {
+        const std::uint32_t c = extra[i].second;
+        for (std::size_t j = 1; j < num_starts; ++j)
+          if (const std::int32_t w = weight[i * num_starts + j]; w != 0) {
+            std::vector<std::int64_t>& acc = diff[std::size_t(t) * num_starts + j];
+            for (std::uint32_t p = l.begin[c]; p < l.begin[c + 1]; ++p)
+              acc[p] += w * l.fixedPoint(d[p], c);
+          }
+      },
+      progress, share, 1.0 - share);
   for (std::size_t j = 1; j < num_starts; ++j) {
     sums[j] = sums[0];
     for (int t = 0; t < threads; ++t)

@@ -25,7 +25,7 @@ Hierarchy hierarchyStage(const Analysis& a, const WeightedGraph& graph,
   if (params.rule != StoppingRule::ShortCut)
     return buildHierarchy(graph, l, params);
   // The short-cut rule measures each split's boundary on the kNN graph (core/short_cut.h).
-  const NeckMeasure necks(a.graph, a.supernodes.label, l);
+  const NeckMeasure necks(*a.graph, a.supernodes.label, l);
   const SplitNeckFn split_neck = [&necks, l](const std::vector<std::uint32_t>& v1,
                                              const std::vector<std::uint32_t>& v2) {
     std::vector<std::int8_t> side(l, -1);
@@ -66,14 +66,15 @@ void labelPoints(const Analysis& a, CutResult& r) {
 void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   if (a.cad || !params.band)
     return;
-  refineBoundaries(a.graph, a.radii, a.crease, params, r.point_segment, r.num_segments);
+  refineBoundaries(*a.graph, a.radii, a.crease, params, r.point_segment, r.num_segments);
 }
 
 void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_xyz.empty())
     return;
-  const std::vector<std::uint32_t> map = mergeAcrossRim(
-      a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, r.point_segment, r.num_segments);
+  const std::vector<std::uint32_t> map =
+      mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, r.point_segment,
+                     r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];
@@ -90,7 +91,7 @@ void viewSmallSegmentStage(const Analysis& a, const BoundaryParams& params, CutR
   // view's, and the paper's small is a fraction of the object's.
   const double min_area = *params.view_small_segment * 2.0 * total;
   const std::vector<std::uint32_t> map =
-      joinSmallSegments(a.graph, area, min_area, r.point_segment, r.num_segments);
+      joinSmallSegments(*a.graph, area, min_area, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];

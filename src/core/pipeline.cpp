@@ -37,18 +37,30 @@ bool splitsCreases(const Parameters& params) {
   return params.refinement.crease_split || params.refinement.crease_cut;
 }
 
-/// Per start, the first start with the same samples (the same f, hence the same analysis).
-std::vector<std::size_t> firstWithSameSamples(const std::vector<Centrality>& f) {
+/// The starts whose samples no earlier start has, and per such start how many starts have
+/// its samples (the same samples give the same f, hence the same analysis).
+struct DistinctStarts {
+  std::vector<std::size_t> start;
+  std::vector<std::uint32_t> weight;
+};
+DistinctStarts distinctStarts(const std::vector<Centrality>& f) {
   std::vector<std::vector<std::uint32_t>> sets;
   for (const Centrality& c : f) {
     sets.push_back(c.samples);
     std::sort(sets.back().begin(), sets.back().end());
   }
-  std::vector<std::size_t> first(f.size());
-  for (std::size_t j = 0; j < f.size(); ++j)
-    first[j] =
+  DistinctStarts d;
+  for (std::size_t j = 0; j < f.size(); ++j) {
+    const auto first =
         static_cast<std::size_t>(std::find(sets.begin(), sets.end(), sets[j]) - sets.begin());
-  return first;
+    if (first == j) {
+      d.start.push_back(j);
+      d.weight.push_back(0);
+    }
+    const auto at = std::find(d.start.begin(), d.start.end(), first) - d.start.begin();
+    ++d.weight[static_cast<std::size_t>(at)];
+  }
+  return d;
 }
 
 /// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
@@ -63,35 +75,25 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
   const auto starts =
       rim.empty() ? static_cast<std::size_t>(std::max(1, params.centrality.starts)) : 1;
   std::vector<Centrality> f = centralityStage(graph, params, tie_rank, times, progress, starts);
-  const std::vector<std::size_t> same = firstWithSameSamples(f);
-  std::vector<std::size_t> distinct; // the starts whose samples no earlier start has
-  std::vector<std::uint32_t> weight(starts, 0);
-  for (std::size_t j = 0; j < starts; ++j) {
-    if (same[j] == j)
-      distinct.push_back(j);
-    ++weight[same[j]];
-  }
+  const DistinctStarts distinct = distinctStarts(f);
   // Phase by phase over the starts, so that progress reports each phase once.
-  const auto share = [&distinct](std::size_t done) {
-    return static_cast<double>(done) / static_cast<double>(distinct.size());
+  const std::size_t num = distinct.start.size();
+  const auto share = [num](std::size_t done) {
+    return static_cast<double>(done) / static_cast<double>(num);
   };
+  const auto shared = std::make_shared<const CsrGraph>(std::move(graph));
   std::vector<Analysis> each;
   if (progress)
     progress("Snod", 0.0);
-  for (std::size_t i = 0; i < distinct.size(); ++i) {
-    CsrGraph g;
-    if (i + 1 < distinct.size())
-      g = graph; // a copy for each analysis but the last
-    else
-      g = std::move(graph);
-    each.push_back(supernodeStage(std::move(g), std::move(f[distinct[i]]), params, times));
-    each.back().rim = rim;
+  for (std::size_t i = 0; i < num; ++i) {
+    each.push_back(supernodeStage(shared, std::move(f[distinct.start[i]]), params, times));
+    each.back().rim = i + 1 == num ? std::move(rim) : rim; // the last takes it, the others copy
     if (progress)
       progress("Snod", share(i + 1));
   }
   if (progress)
     progress("LRef", 0.0);
-  for (std::size_t i = 0; i < distinct.size(); ++i) {
+  for (std::size_t i = 0; i < num; ++i) {
     refinementStage(each[i], params, times);
     if (progress)
       progress("LRef", share(i + 1));
@@ -102,7 +104,7 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
     // Measured between the supernodes, like eq. (8): their time counts as refinement time.
     Stopwatch clock;
     const SurfaceBends bends =
-        surfaceBends(each[0].graph, xyz.data(), params.execution.num_threads);
+        surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads);
     for (Analysis& one : each) {
       if (creases)
         creaseStage(one, xyz.data(), bends, params);
@@ -114,8 +116,7 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
   for (std::size_t i = 1; i < each.size(); ++i)
     a.other_starts.push_back(std::move(each[i]));
   if (starts > 1)
-    for (std::size_t j : distinct)
-      a.start_weights.push_back(weight[j]);
+    a.start_weights = distinct.weight;
   return a;
 }
 

@@ -7,6 +7,8 @@
 #include <pcl_ncut_seg/core/denoise.h>
 #include <pcl_ncut_seg/core/pipeline.h>
 
+#include <memory>
+
 namespace pcl_ncut_seg {
 
 /** \brief Graph stage (Sec. 4.1): the symmetric kNN graph with Euclidean lengths; when
@@ -30,8 +32,8 @@ std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters&
                                         std::size_t num_starts = 1);
 /** \brief Supernode stage (Sec. 4.2) on a graph and its f: the supernodes of the gradient
  * flow. Sets graph, centrality and raw_supernodes; time is added to times.supernodes. */
-Analysis supernodeStage(CsrGraph graph, Centrality centrality, const Parameters& params,
-                        PhaseTimes& times);
+Analysis supernodeStage(std::shared_ptr<const CsrGraph> graph, Centrality centrality,
+                        const Parameters& params, PhaseTimes& times);
 /** \brief Refinement stage (Sec. 4.3) after supernodeStage(): the radii r(p), local
  * refinement, feature statistics and eq. (8). Time is added to times.refinement. */
 void refinementStage(Analysis& analysis, const Parameters& params, PhaseTimes& times);

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -64,7 +65,8 @@ struct PointSet {
 /** \brief The expensive stage: everything that depends only on the points and the analysis
  * stages' parameters (and on which extensions the cut asks for, cutNeeds()). */
 struct Analysis {
-  CsrGraph graph;            ///< the kNN graph (CAD mode: transformed, Sec. 7)
+  /// The kNN graph (CAD mode: transformed, Sec. 7); the starts' analyses share it.
+  std::shared_ptr<const CsrGraph> graph;
   Centrality centrality;     ///< Sec. 4.1
   std::vector<float> radii;  ///< r(p), Sec. 4.3
   Supernodes raw_supernodes; ///< Sec. 4.2, before refinement
