@@ -1,0 +1,309 @@
+#include "parameter_row_builders.h"
+
+namespace pcl_ncut_seg {
+namespace {
+using namespace table_rows;
+using S = Stage;
+using K = ValueKind;
+using Rows = std::vector<ParameterInfo>;
+
+/// The field at a path of Parameters, as number(), boolean() and choice() take it.
+#define FIELD(path)                                                                                \
+  [](Parameters & p) -> auto& {                                                                    \
+    return p.path;                                                                                 \
+  }
+
+/// Graph (Sec. 4.1)
+void graphRows(Rows& t) {
+  t.push_back(number<int, int>(
+      row("k", "graph.k", S::Graph, K::Integer, "K",
+          "nearest neighbours per point; p and q are joined if either is among the other's k "
+          "nearest (Sec. 4.1)",
+          true),
+      atLeast(2), FIELD(graph.k)));
+  t.push_back(number<double, std::optional<double>>(
+      row("bridge_gap", "graph.bridge_gap", S::Graph, K::Real, "G",
+          "join components of the kNN graph that only a sampling gap separates, by their "
+          "shortest point pair when it is at most G kNN radii long",
+          false, {"bridge"}),
+      above(0), FIELD(graph.bridge_gap), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("denoise", "graph.denoise", S::Graph, K::Real, "G",
+          "sensor noise: when the scatter of the points about their local planes grows less "
+          "than G times from the 1-ring to the 2-ring (noise, not curvature: about 1 against "
+          "4), project each point onto its 2-ring's plane first; not in CAD mode",
+          false),
+      above(1), FIELD(graph.denoise), "off"));
+  t.push_back(number<int, std::optional<int>>(
+      row("max_points", "graph.max_points", S::Graph, K::Integer, "N",
+          "the analysis' resolution: a denser cloud is analysed on at most N of its points (the "
+          "point nearest the centre of each cube of a grid; the same whatever their order) and "
+          "every other point takes the segment of its nearest analysed point",
+          false),
+      atLeast(100), FIELD(graph.max_points), "off"));
+}
+
+/// Centrality (Sec. 4.1)
+void centralityRows(Rows& t) {
+  t.push_back(number<int, std::optional<int>>(
+      row("centrality_samples", "centrality.samples", S::Centrality, K::Integer, "S",
+          "centrality samples per connected component; auto: ceil(sqrt(n)) as in the paper", true,
+          {"cen_samples"}),
+      atLeast(1), FIELD(centrality.samples), "auto"));
+  t.push_back(choice<CentralityMode>(
+      row("centrality", "centrality.mode", S::Centrality, K::Choice, "MODE",
+          "exact: eq. (1) with searches over the whole kNN graph, as the paper; fast: on a "
+          "coarse graph of representatives, carried back to every point",
+          false),
+      {"exact", "fast"}, FIELD(centrality.mode)));
+  t.push_back(number<int, int>(
+      row("representatives", "centrality.representatives", S::Centrality, K::Integer, "R",
+          "fast centrality: points of the coarse graph (clouds of at most R points are "
+          "computed exactly)",
+          false),
+      atLeast(100), FIELD(centrality.representatives)));
+  t.push_back(number<int, int>(
+      row("starts", "centrality.starts", S::Centrality, K::Integer, "S",
+          "farthest-point sampling of eq. (1) from S starts (the first S samples of one chain), "
+          "a segmentation from each; the one closest to the others by Rand index is kept (1: "
+          "one start, the paper; CAD mode and open views: one)",
+          false),
+      closed(1, 16), FIELD(centrality.starts)));
+}
+
+/// Supernodes (Sec. 4.2)
+void supernodeRows(Rows& t) {
+  t.push_back(number<float, float>(
+      row("crossing_fraction", "supernodes.crossing_fraction", S::Supernodes, K::Real, "F",
+          "fraction of |N(p)| below which a supernode's neighbours of p count as reached "
+          "through feature-crossing edges (Sec. 4.2 (b))",
+          true, {"crossing"}),
+      closed(0, 1), FIELD(supernodes.crossing_fraction)));
+}
+
+/// Refinement (Sec. 4.3)
+void refinementRows(Rows& t) {
+  t.push_back(number<float, float>(
+      row("area_fraction", "refinement.area_fraction", S::Refinement, K::Real, "F",
+          "small supernodes: feature area below this fraction of the total (Sec. 4.3)", true,
+          {"area"}),
+      closed(0, 1), FIELD(refinement.area_fraction)));
+  t.push_back(number<float, float>(
+      row("height_fraction", "refinement.height_fraction", S::Refinement, K::Real, "F",
+          "skinny supernodes: feature height below this fraction of the largest (Sec. 4.3)", true,
+          {"height"}),
+      closed(0, 1), FIELD(refinement.height_fraction)));
+  t.push_back(number<double, std::optional<double>>(
+      row("crease_split", "refinement.crease_split", S::Refinement, K::Real, "C",
+          "crease splits: split a supernode along its most concave level cut of the "
+          "centrality when that cut's mean concave bend (in mean bends per kNN edge) is at "
+          "least C",
+          false, {"crease"}),
+      above(0), FIELD(refinement.crease_split), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("crease_cut", "refinement.crease_cut", S::Refinement, K::Real, "S",
+          "crease cuts: split a supernode that no level cut splits along its minimum cut "
+          "weighted by concave bend when a share of at least S of the edges it crosses are "
+          "concave",
+          false, {"creasecut"}),
+      leftOpen(0, 1), FIELD(refinement.crease_cut), "off"));
+}
+
+/// CAD (Sec. 7)
+void cadRows(Rows& t) {
+  t.push_back(boolean(row("cad", "cad.enabled", S::Cad, K::Switch, "",
+                          "CAD mode (Sec. 7): the faces of a mechanical part, separated at its "
+                          "ridges, instead of elongated parts",
+                          true),
+                      FIELD(cad.enabled)));
+  t.push_back(
+      number<int, int>(row("cad_smoothing", "cad.smoothing_iterations", S::Cad, K::Integer, "N",
+                           "CAD mode: Laplacian smoothing steps of the approximate normals", true),
+                       atLeast(0), FIELD(cad.smoothing_iterations)));
+  t.push_back(number<float, float>(
+      row("ridge_angle", "cad.ridge_angle", S::Cad, K::Real, "DEG",
+          "CAD mode: a ridge point's normal turns by more than this to its neighbours' on "
+          "average",
+          true),
+      leftOpen(0, 90), FIELD(cad.ridge_angle)));
+  t.push_back(number<float, float>(
+      row("ridge_shrink", "cad.shrink", S::Cad, K::Real, "F",
+          "CAD mode: length factor of edges between points equidistant from a ridge", true),
+      above(0), FIELD(cad.shrink)));
+  t.push_back(number<float, float>(
+      row("ridge_stretch", "cad.stretch", S::Cad, K::Real, "F",
+          "CAD mode: length factor of edges pointing straight away from a ridge", true),
+      above(0), FIELD(cad.stretch)));
+}
+
+/// Similarity (Sec. 5.1)
+void similarityRows(Rows& t) {
+  t.push_back(number<double, double>(
+      row("beta", "similarity.beta", S::Similarity, K::Real, "B",
+          "beta of eq. (7), the weight between a supernode's representative and member "
+          "vertices",
+          true),
+      above(0), FIELD(similarity.beta)));
+  t.push_back(
+      number<double, double>(row("alpha1", "similarity.alpha1", S::Similarity, K::Real, "A",
+                                 "alpha1 of eq. (9), the weight between member vertices", true),
+                             above(0), FIELD(similarity.alpha1)));
+  t.push_back(number<double, double>(
+      row("alpha2", "similarity.alpha2", S::Similarity, K::Real, "A",
+          "alpha2 of eq. (9), which scales the width ratio of two supernodes", true),
+      above(0), FIELD(similarity.alpha2)));
+  t.push_back(boolean(row("normalize_width", "similarity.normalize_width", S::Similarity,
+                          K::Boolean, "on|off",
+                          "divide the feature width by sqrt(total feature area), so that eq. "
+                          "(7) does not depend on units",
+                          false),
+                      FIELD(similarity.normalize_width)));
+  t.push_back(choice<Adjacency>(
+      row("adjacency", "similarity.adjacency", S::Similarity, K::Choice, "WHICH",
+          "which touching supernodes are joined: saddles (the paper), trees (also trees of "
+          "supernodes that touch but meet at no saddle), all (every touching pair, subject to "
+          "-adjacent_share)",
+          false),
+      {"saddles", "trees", "all"}, FIELD(similarity.adjacency)));
+  t.push_back(number<double, double>(
+      row("adjacent_share", "similarity.adjacent_share", S::Similarity, K::Real, "S",
+          "adjacency all: a pair that meets at no saddle is joined when its contact is at "
+          "least this share of the smaller total contact of the two",
+          false, {"share"}),
+      closed(0, 1), FIELD(similarity.adjacent_share)));
+  t.push_back(number<double, std::optional<double>>(
+      row("concavity", "similarity.concavity", S::Similarity, K::Real, "W",
+          "concave creases: the weight of eq. (9) is multiplied by exp(-W c), c how concave "
+          "the pair's contact is",
+          false, {"concavity_weight"}),
+      above(0), FIELD(similarity.concavity), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("flat_elongation", "similarity.flat_elongation", S::Similarity, K::Real, "E",
+          "flat patches: between two supernodes with feature height < E sqrt(feature area), "
+          "eq. (9) leaves out the width ratio",
+          false, {"flat"}),
+      above(0), FIELD(similarity.flat_elongation), "off"));
+  t.push_back(number<float, float>(
+      row("face_angle", "similarity.face_angle", S::Similarity, K::Real, "DEG",
+          "CAD mode: angle scale of the face-orientation similarity exp(-(angle / DEG)^2)", false),
+      leftOpen(0, 90), FIELD(similarity.face_angle)));
+}
+
+/// Stopping (Sec. 5.2)
+void stoppingRows(Rows& t) {
+  t.push_back(choice<StoppingRule>(
+      row("stopping", "stopping.rule", S::Stopping, K::Choice, "RULE",
+          "threshold: bisect while the best NCut <= -threshold (the paper); largest_gap: "
+          "best-first splits up to the largest jump in NCut; short_cut: best-first splits "
+          "across short boundaries; count: -segments parts",
+          false),
+      {"threshold", "largest_gap", "short_cut", "count"}, FIELD(stopping.rule)));
+  t.push_back(number<double, double>(
+      row("threshold", "stopping.threshold", S::Stopping, K::Real, "T",
+          "normalized-cut threshold (Sec. 5.2): no part is split at a higher NCut", true),
+      atLeast(0), FIELD(stopping.threshold)));
+  {
+    // Asking for a number of segments is choosing the count rule.
+    ParameterInfo segments = number<int, int>(
+        row("segments", "stopping.segments", S::Stopping, K::Integer, "N",
+            "ask for N segments (sets -stopping count); fewer come out when no part can be "
+            "split",
+            false),
+        atLeast(1), FIELD(stopping.segments));
+    const auto set = segments.set;
+    segments.set = [set](Parameters& p, const std::string& text, std::string* why) {
+      if (!set(p, text, why))
+        return false;
+      p.stopping.rule = StoppingRule::Count;
+      return true;
+    };
+    t.push_back(segments);
+  }
+  t.push_back(
+      number<int, int>(row("splits", "stopping.num_splits", S::Stopping, K::Integer, "N",
+                           "uniform split values tried on each eigenvector (Sec. 5.2)", true),
+                       atLeast(1), FIELD(stopping.num_splits)));
+  t.push_back(number<double, std::optional<double>>(
+      row("min_segment_fraction", "stopping.min_segment_fraction", S::Stopping, K::Real, "F",
+          "threshold rule: a part is bisected only if each side keeps this fraction of the "
+          "feature area",
+          false, {"min_fraction"}),
+      leftOpen(0, 0.5), FIELD(stopping.min_segment_fraction), "off"));
+  t.push_back(
+      number<int, int>(row("max_segments", "stopping.max_segments", S::Stopping, K::Integer, "N",
+                           "largest_gap, short_cut: at most N segments", false, {"maxseg"}),
+                       atLeast(1), FIELD(stopping.max_segments)));
+  t.push_back(number<double, double>(
+      row("gap_floor", "stopping.gap_floor", S::Stopping, K::Real, "F",
+          "largest_gap, short_cut: NCut values below F count as F", false, {"gapfloor"}),
+      above(0), FIELD(stopping.gap_floor)));
+  t.push_back(number<double, double>(
+      row("neck_exponent", "stopping.neck_exponent", S::Stopping, K::Real, "W",
+          "short_cut: a split's NCut is weighted by neck^W, neck = its boundary's length over "
+          "the square root of the smaller side's area",
+          false, {"neck"}),
+      above(0), FIELD(stopping.neck_exponent)));
+  t.push_back(number<double, double>(
+      row("neck_bound", "stopping.neck_bound", S::Stopping, K::Real, "B",
+          "short_cut: the weighted NCut below which a split is worth making (larger: more "
+          "segments)",
+          false, {"neckbound"}),
+      above(0), FIELD(stopping.neck_bound)));
+}
+
+/// Boundary
+void boundaryRows(Rows& t) {
+  t.push_back(number<double, std::optional<double>>(
+      row("boundary_band", "boundary.band", S::Boundary, K::Real, "F",
+          "boundary refinement: recut each pair of touching segments by a minimum cut within "
+          "a band holding at most this fraction of either segment's area",
+          false, {"band"}),
+      leftOpen(0, 0.5), FIELD(boundary.band), "off"));
+  t.push_back(number<double, double>(
+      row("boundary_crease", "boundary.crease_weight", S::Boundary, K::Real, "W",
+          "boundary refinement: a kNN edge's cut cost is its length times exp(-W c), c its "
+          "concave bend (0: the shortest boundary)",
+          false, {"bandcrease"}),
+      atLeast(0), FIELD(boundary.crease_weight)));
+  t.push_back(number<double, std::optional<double>>(
+      row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "DEG",
+          "open views (an organized cloud, or one view from the sensor origin): merge two "
+          "touching segments, one reaching the view's rim, when the planes of the boundary's "
+          "two sides (3 rings each) meet at a concave angle below DEG degrees and its neck is "
+          "at least sqrt(pi) (no limb's); not in CAD mode",
+          false),
+      leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("view_small_segment", "boundary.view_small_segment", S::Boundary, K::Real, "F",
+          "open views (as rim_merge): a segment whose area is below F of the object's (taken "
+          "as twice the view's: a view shows at most half of a closed surface) joins the "
+          "touching segment it shares most kNN edges with; not in CAD mode",
+          false),
+      leftOpen(0, 0.5), FIELD(boundary.view_small_segment), "off"));
+}
+
+/// Execution
+void executionRows(Rows& t) {
+  t.push_back(number<unsigned, unsigned>(
+      row("threads", "execution.num_threads", S::Execution, K::Integer, "N",
+          "threads; 0: all cores; the result does not depend on it", false),
+      atLeast(0), FIELD(execution.num_threads)));
+}
+
+} // namespace
+
+std::vector<ParameterInfo> makeParameterTable() {
+  Rows t;
+  graphRows(t);
+  centralityRows(t);
+  supernodeRows(t);
+  refinementRows(t);
+  cadRows(t);
+  similarityRows(t);
+  stoppingRows(t);
+  boundaryRows(t);
+  executionRows(t);
+  return t;
+}
+
+} // namespace pcl_ncut_seg
