@@ -133,6 +133,10 @@ TEST(Starts, TheResultIsTheMedoidOfTheStartsSegmentations) {
   for (std::uint32_t w : analysis.start_weights)
     total += w;
   EXPECT_EQ(total, 5u);
+  // The starts differ in their samples only: they share one kNN graph, not copies of it.
+  ASSERT_NE(analysis.graph, nullptr);
+  for (std::size_t s = 1; s < distinct; ++s)
+    EXPECT_EQ(startAnalysis(analysis, s).graph.get(), analysis.graph.get());
   std::vector<Labels> each;
   for (std::size_t s = 0; s < distinct; ++s)
     each.push_back(cutOneStart(seg, s, n));
