@@ -47,13 +47,15 @@ TEST(ShortCut, NeckIsTheBoundaryOverTheSmallerSidesSize) {
   std::vector<std::uint32_t> label(100);
   for (std::uint32_t p = 0; p < 100; ++p)
     label[p] = p % 10;
-  const NeckMeasure measure(g, label, 10);
+  const NeckMeasure measure(g, label, 10, false);
   const double pi = std::acos(-1.0);
   std::vector<std::int8_t> side(10);
   // Halves: a boundary of 10 points on each side (length 20), 50 points a side.
   for (int s = 0; s < 10; ++s)
     side[s] = s < 5 ? 0 : 1;
   EXPECT_NEAR(measure.neck(side), 20.0 / std::sqrt(50 * pi), 1e-9);
+  // The vote of a noisy cloud leaves a straight boundary as it is.
+  EXPECT_NEAR(NeckMeasure(g, label, 10, true).neck(side), 20.0 / std::sqrt(50 * pi), 1e-9);
   // A strip of 2 columns against 8: the same boundary, a smaller side: a longer neck.
   for (int s = 0; s < 10; ++s)
     side[s] = s < 2 ? 0 : 1;
@@ -66,6 +68,24 @@ TEST(ShortCut, NeckIsTheBoundaryOverTheSmallerSidesSize) {
   for (int s = 0; s < 10; ++s)
     side[s] = s == 0 ? 0 : (s == 5 ? 1 : -1);
   EXPECT_EQ(measure.neck(side), 0.0);
+}
+
+TEST(ShortCut, OnANoisyCloudTheNeckIsMeasuredAfterAVote) {
+  // 10 x 10 grid, supernode 0 left of x = 5 and supernode 1 right of it, but for two points
+  // of supernode 0 at (6, 2) and (6, 6) among those of 1: the fringe of a noisy cloud.
+  const CsrGraph g = grid(10, 10);
+  std::vector<std::uint32_t> label(100);
+  for (std::uint32_t p = 0; p < 100; ++p) {
+    const std::uint32_t x = p % 10, y = p / 10;
+    label[p] = x < 5 || (x == 6 && y % 4 == 2) ? 0 : 1;
+  }
+  const double pi = std::acos(-1.0);
+  const std::vector<std::int8_t> side = {0, 1};
+  // Without the vote: side 0 has 12 boundary points (column 4 and the two, length 24), side 1
+  // has 16 (column 5 and 3 more around each of the two, length 32) and 48 points.
+  EXPECT_NEAR(NeckMeasure(g, label, 2, false).neck(side), 28.0 / std::sqrt(48 * pi), 1e-9);
+  // The vote moves both to side 1 (4 of their 5 votes): the straight boundary's neck.
+  EXPECT_NEAR(NeckMeasure(g, label, 2, true).neck(side), 20.0 / std::sqrt(50 * pi), 1e-9);
 }
 
 TEST(ShortCut, WorthWeighsTheNcutByTheNeck) {

@@ -24,8 +24,9 @@ Hierarchy hierarchyStage(const Analysis& a, const WeightedGraph& graph,
   const std::size_t l = a.supernodes.size();
   if (params.rule != StoppingRule::ShortCut)
     return buildHierarchy(graph, l, params);
-  // The short-cut rule measures each split's boundary on the kNN graph (core/short_cut.h).
-  const NeckMeasure necks(*a.graph, a.supernodes.label, l);
+  // The short-cut rule measures each split's boundary on the kNN graph (core/short_cut.h),
+  // on a noisy cloud after a vote that takes the noise out of the boundaries.
+  const NeckMeasure necks(*a.graph, a.supernodes.label, l, a.noise.projected);
   const SplitNeckFn split_neck = [&necks, l](const std::vector<std::uint32_t>& v1,
                                              const std::vector<std::uint32_t>& v2) {
     std::vector<std::int8_t> side(l, -1);

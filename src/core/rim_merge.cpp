@@ -149,7 +149,9 @@ mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
     on_rim[segment[p]] |= rim[p];
   // Measured once over the input segments; a merged segment's sides are sums of these.
   const std::vector<Band> band = sideBands(graph, xyz, normals, segment, t);
-  const NeckMeasure necks(graph, segment, t);
+  // No vote (core/short_cut.h): these boundaries are the boundary refinement's cuts, not a
+  // fringe of interleaved supernodes.
+  const NeckMeasure necks(graph, segment, t, false);
   std::vector<std::uint32_t> group(t); // per input segment, its merged one (its smallest id)
   std::iota(group.begin(), group.end(), 0u);
   const double bound = max_degrees * kPi / 180.0;

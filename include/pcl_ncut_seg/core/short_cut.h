@@ -18,28 +18,42 @@ namespace pcl_ncut_seg {
  * square root of the smaller side's area, both estimated from the kNN graph (each point
  * stands for a disc of radius r(p), the mean length of its kNN edges). Dimensionless: about
  * 2 pi w / sqrt(2 pi w h) for a limb of width w and length h cut at its base, about 4 or more
- * for a square patch cut out of a flat region. */
+ * for a square patch cut out of a flat region.
+ *
+ * On a noisy cloud (vote = true) the boundary is measured after one majority vote over each
+ * point's kNN neighbourhood (the point's side becomes the one most of it and its neighbours
+ * have; a tie keeps it): there the supernodes interleave along their boundaries by about the
+ * noise, and every point of that fringe would count as boundary, a neck 1.5 times as long at
+ * noise of one point spacing, for the same cut. A boundary straight at the scale of the
+ * neighbourhoods is left as it is. On a clean cloud a fringe is not noise: a chip of a flat
+ * wall, cut where the centrality is flat, has one, and its long boundary is what keeps it. */
 class NeckMeasure {
 public:
   /** \param[in] graph  the kNN graph (edge lengths)
    * \param[in] label  per vertex, its supernode
-   * \param[in] num_supernodes  number of supernodes */
+   * \param[in] num_supernodes  number of supernodes
+   * \param[in] vote  measure after the vote (a noisy cloud: NoiseTest::projected) */
   NeckMeasure(const CsrGraph& graph, const std::vector<std::uint32_t>& label,
-              std::size_t num_supernodes);
+              std::size_t num_supernodes, bool vote);
 
   /** \brief side[s]: 0 or 1 for the supernodes of the two sides of a split, negative for
    * supernodes outside the split part. Returns the boundary length (the mean of the two sides'
-   * sum of 2 r(p) over points with a kNN neighbour on the other side) over sqrt of the smaller
-   * side's area (sum of pi r(p)^2); 0 when the sides do not touch or a side has no area. */
+   * sum of 2 r(p) over points with a kNN neighbour on the other side, after any vote) over
+   * sqrt of the smaller side's area (sum of pi r(p)^2); 0 when the sides do not touch or a
+   * side has no area. */
   double neck(const std::vector<std::int8_t>& side) const;
 
 private:
   std::vector<double> area_; ///< per supernode, sum of pi r(p)^2
-  // Points with a kNN neighbour in another supernode: their supernode, 2 r(p), and the other
-  // supernodes among their neighbours (CSR).
-  std::vector<std::uint32_t> border_label_;
-  std::vector<double> border_length_;
-  std::vector<std::uint32_t> border_offsets_, border_neighbours_;
+  // The fringe: points with a kNN neighbour in another supernode (the only ones a vote can
+  // move) and their neighbours (the only others the moved ones can put on the boundary). Per
+  // fringe point: its supernode, r(p), its index among the voters (or kNone) and its
+  // neighbours as fringe indices (CSR). Voters come first, in point order.
+  std::vector<std::uint32_t> fringe_label_;
+  std::vector<float> fringe_radius_;
+  std::vector<std::uint32_t> fringe_offsets_, fringe_neighbours_;
+  std::size_t num_voters_ = 0;
+  bool vote_ = false;
 };
 
 /** \brief The worth of a split under the short-cut rule:
