@@ -64,9 +64,9 @@ double NeckMeasure::neck(const std::vector<std::int8_t>& side) const {
     return s < side.size() && side[s] >= 0 ? (side[s] != 0) : -1;
   };
   double area[2] = {0.0, 0.0}, length[2] = {0.0, 0.0};
-  for (std::size_t s = 0; s < area_.size(); ++s)
-    if (sideOf(static_cast<std::uint32_t>(s)) >= 0)
-      area[sideOf(static_cast<std::uint32_t>(s))] += area_[s];
+  for (std::uint32_t s = 0; s < area_.size(); ++s)
+    if (const std::int8_t t = sideOf(s); t >= 0)
+      area[t] += area_[s];
   // The vote, from the sides before it (all voters at once); a voter that changes side takes
   // its area along.
   const std::size_t m = fringe_label_.size();

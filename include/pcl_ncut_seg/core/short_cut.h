@@ -47,10 +47,10 @@ private:
   std::vector<double> area_; ///< per supernode, sum of pi r(p)^2
   // The fringe: points with a kNN neighbour in another supernode (the only ones a vote can
   // move) and their neighbours (the only others the moved ones can put on the boundary). Per
-  // fringe point: its supernode, r(p), its index among the voters (or kNone) and its
-  // neighbours as fringe indices (CSR). Voters come first, in point order.
+  // fringe point: its supernode, r(p) and its neighbours as fringe indices (CSR), only those
+  // that vote for a point that does not. The voters come first, in point order.
   std::vector<std::uint32_t> fringe_label_;
-  std::vector<float> fringe_radius_;
+  std::vector<double> fringe_radius_;
   std::vector<std::uint32_t> fringe_offsets_, fringe_neighbours_;
   std::size_t num_voters_ = 0;
   bool vote_ = false;
