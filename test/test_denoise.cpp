@@ -2,8 +2,11 @@
  * Sensor noise, detected and projected away (core/denoise.h,
  * SupernodeNCutSegmentation::setDenoise).
  */
+#include <pcl_ncut_seg/core/analysis_stages.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/denoise.h>
+#include <pcl_ncut_seg/core/knn.h>
+#include <pcl_ncut_seg/core/pipeline.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"
@@ -96,6 +99,79 @@ TEST(Denoise, TheSameForAnyNumberOfThreads) {
   EXPECT_EQ(residualGrowth(graph, xyz.data(), 1), residualGrowth(graph, xyz.data(), 2));
   EXPECT_EQ(projectOntoLocalPlanes(graph, xyz.data(), 1),
             projectOntoLocalPlanes(graph, xyz.data(), 2));
+  std::vector<float> values(kN);
+  for (std::size_t i = 0; i < kN; ++i)
+    values[i] = xyz[3 * i] + 0.001f * static_cast<float>(i % 7);
+  EXPECT_EQ(neighbourhoodMean(graph, values, 1), neighbourhoodMean(graph, values, 2));
+}
+
+TEST(Denoise, TheNeighbourhoodMeanIsOverTheVertexAndItsNeighbours) {
+  // A path 0 - 1 - 2 - 3 with one isolated vertex 4.
+  CsrGraph graph;
+  graph.offsets = {0, 1, 3, 5, 6, 6};
+  graph.targets = {1, 0, 2, 1, 3, 2};
+  graph.lengths.assign(graph.targets.size(), 1.0f);
+  const std::vector<float> mean = neighbourhoodMean(graph, {4.0f, 1.0f, 7.0f, 3.0f, 9.0f}, 2);
+  ASSERT_EQ(mean.size(), 5u);
+  EXPECT_FLOAT_EQ(mean[0], 2.5f);         // (4 + 1) / 2
+  EXPECT_FLOAT_EQ(mean[1], 4.0f);         // (1 + 4 + 7) / 3
+  EXPECT_FLOAT_EQ(mean[2], 11.0f / 3.0f); // (7 + 1 + 3) / 3
+  EXPECT_FLOAT_EQ(mean[3], 5.0f);         // (3 + 7) / 2
+  EXPECT_FLOAT_EQ(mean[4], 9.0f);         // alone: itself
+}
+
+namespace {
+/// The analysis' centrality (start 0) and the graph stage's f before any mean, for the same
+/// points, parameters and kNN graph.
+struct CentralityPair {
+  std::vector<float> analysed, raw, mean_of_raw;
+  bool projected = false;
+};
+
+CentralityPair centralityBeforeAndAfter(const std::vector<float>& xyz, const Parameters& params,
+                                        std::vector<std::uint8_t> rim = {}) {
+  const std::size_t n = xyz.size() / 3, k = static_cast<std::size_t>(params.graph.k);
+  std::vector<std::uint32_t> knn(n * k);
+  kNearestNeighbours(xyz.data(), n, k, 1, knn.data());
+  CentralityPair out;
+  PhaseTimes times;
+  PointSet points;
+  points.xyz = xyz;
+  points.knn = knn;
+  points.k = k;
+  points.rim = std::move(rim);
+  out.analysed = analyze(points, params, times).centrality.f;
+  std::vector<float> moved = xyz;
+  NoiseTest noise;
+  const CsrGraph graph = graphStage(moved, knn.data(), k, params.graph, true, 1, &noise);
+  out.projected = noise.projected;
+  out.raw = centralityStage(graph, params, nullptr, times, {}).front().f;
+  out.mean_of_raw = neighbourhoodMean(graph, out.raw, 1);
+  return out;
+}
+} // namespace
+
+TEST(Denoise, OnANoisyWholeSurfaceTheCentralityIsTakenThroughTheMeanOnce) {
+  Parameters params;
+  params.centrality.starts = 1;
+  params.graph.max_points.reset();
+  const std::vector<float> noisy = sphere(kN, 0.5 * kSpacing);
+  const CentralityPair a = centralityBeforeAndAfter(noisy, params);
+  ASSERT_TRUE(a.projected);
+  EXPECT_EQ(a.analysed, a.mean_of_raw);
+  EXPECT_NE(a.analysed, a.raw);
+
+  // So does the same noisy cloud as an open view (it has a rim): a depth sensor's noise runs
+  // along its rays, and the projection takes it out.
+  std::vector<std::uint8_t> rim(kN, 0);
+  rim[0] = 1;
+  EXPECT_EQ(centralityBeforeAndAfter(noisy, params, rim).analysed, a.raw);
+
+  // A clean cloud keeps eq. (1)'s f as it is.
+  const std::vector<float> clean = test::xyzOf(*test::makeHand(4000, 7).cloud);
+  const CentralityPair b = centralityBeforeAndAfter(clean, params);
+  ASSERT_FALSE(b.projected);
+  EXPECT_EQ(b.analysed, b.raw);
 }
 
 TEST(Denoise, CleanSurfacesGiveTheSameSegmentsWithAndWithout) {

@@ -44,7 +44,8 @@ void report(const PhaseProgressFn& progress, const char* phase, double fraction)
 
 std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters& params,
                                         const std::uint32_t* tie_rank, PhaseTimes& times,
-                                        const PhaseProgressFn& progress, std::size_t num_starts) {
+                                        const PhaseProgressFn& progress, std::size_t num_starts,
+                                        bool noisy) {
   Stopwatch clock;
   report(progress, "Cen", 0.0);
   ProgressFn fraction;
@@ -58,6 +59,9 @@ std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters&
           ? computeCentralities(graph, samples, threads, tie_rank, fraction, num_starts)
           : computeCoarseCentralities(graph, static_cast<std::size_t>(c.representatives), samples,
                                       threads, tie_rank, fraction, num_starts);
+  if (noisy) // the noise's own share of f, taken out at the scale it was found at
+    for (Centrality& one : f)
+      one.f = neighbourhoodMean(graph, one.f, threads);
   report(progress, "Cen", 1.0);
   times.centrality += clock.lap();
   return f;

@@ -125,4 +125,20 @@ std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xy
   return out;
 }
 
+std::vector<float> neighbourhoodMean(const CsrGraph& graph, const std::vector<float>& values,
+                                     unsigned num_threads) {
+  const std::size_t n = graph.numVertices();
+  std::vector<float> out(n);
+  const auto sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for num_threads(usableThreads(num_threads)) schedule(static, 4096)
+  for (std::int64_t sp = 0; sp < sn; ++sp) {
+    const auto p = static_cast<std::uint32_t>(sp);
+    double sum = values[p];
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+      sum += values[graph.targets[e]];
+    out[p] = static_cast<float>(sum / (1.0 + graph.degree(p)));
+  }
+  return out;
+}
+
 } // namespace pcl_ncut_seg

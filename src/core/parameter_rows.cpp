@@ -31,7 +31,8 @@ void graphRows(Rows& t) {
       row("denoise", "graph.denoise", S::Graph, K::Real, "G",
           "sensor noise: when the scatter of the points about their local planes grows less "
           "than G times from the 1-ring to the 2-ring (noise, not curvature: about 1 against "
-          "4), project each point onto its 2-ring's plane first; not in CAD mode",
+          "4), project each point onto its 2-ring's plane first and, but on an open view, "
+          "average the centrality over each point's neighbourhood once; not in CAD mode",
           false),
       above(1), FIELD(graph.denoise), "off"));
   t.push_back(number<int, std::optional<int>>(

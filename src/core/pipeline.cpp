@@ -65,16 +65,20 @@ DistinctStarts distinctStarts(const std::vector<Centrality>& f) {
 
 /// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
 /// supernodes, once per start of eq. (1)'s sampling with its own samples (core/starts.h); the
-/// bends are measured once.
+/// bends are measured once. noisy: the graph stage projected the points.
 Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
-                         const PhaseProgressFn& progress) {
+                         const PhaseProgressFn& progress, bool noisy) {
+  // A noisy whole surface has its centrality averaged over neighbourhoods (core/denoise.h), a
+  // view not: a depth sensor's noise runs along its rays, mostly along the normals that the
+  // projection takes it out along (docs/sampling.md).
   // One view (it has a rim): one start. Its parts are decided more by the rim stages than by
   // the start, and a depth camera's frame rate counts (docs/views.md).
   const auto starts =
       rim.empty() ? static_cast<std::size_t>(std::max(1, params.centrality.starts)) : 1;
-  std::vector<Centrality> f = centralityStage(graph, params, tie_rank, times, progress, starts);
+  std::vector<Centrality> f =
+      centralityStage(graph, params, tie_rank, times, progress, starts, noisy && rim.empty());
   const DistinctStarts distinct = distinctStarts(f);
   // Phase by phase over the starts, so that progress reports each phase once.
   const std::size_t num = distinct.start.size();
@@ -168,7 +172,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank, times, progress);
   } else {
     a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank, times,
-                        progress);
+                        progress, noise.projected);
   }
   a.order = std::move(points.order);
   a.noise = noise;

@@ -23,13 +23,16 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
                     NoiseTest* noise = nullptr);
 
 /** \brief Centrality stage (Sec. 4.1): f of eq. (1) from each of num_starts starts of the
- * farthest-point sampling (computeCentralities(), or the coarse graph's in Fast mode).
+ * farthest-point sampling (computeCentralities(), or the coarse graph's in Fast mode), on a
+ * noisy cloud then taken through neighbourhoodMean() (core/denoise.h).
  * Time is added to times.centrality.
- * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index) */
+ * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index)
+ * \param[in] noisy     a whole surface whose points the graph stage projected
+ *                      (NoiseTest::projected; not an open view) */
 std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters& params,
                                         const std::uint32_t* tie_rank, PhaseTimes& times,
-                                        const PhaseProgressFn& progress,
-                                        std::size_t num_starts = 1);
+                                        const PhaseProgressFn& progress, std::size_t num_starts = 1,
+                                        bool noisy = false);
 /** \brief Supernode stage (Sec. 4.2) on a graph and its f: the supernodes of the gradient
  * flow. Sets graph, centrality and raw_supernodes; time is added to times.supernodes. */
 Analysis supernodeStage(std::shared_ptr<const CsrGraph> graph, Centrality centrality,

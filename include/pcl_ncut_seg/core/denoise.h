@@ -44,4 +44,23 @@ inline bool isNoisy(double residual_growth, double growth_bound) {
 std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
                                           unsigned num_threads = 0);
 
+/** \brief Per vertex, the mean of values over its closed neighbourhood in the graph (the vertex
+ * and its neighbours, equally weighted), summed in double in edge order.
+ *
+ * On a noisy whole surface (not an open view, whose sensor's noise runs along its rays, where
+ * the projection takes it out) the centrality of eq. (1) is taken through this mean once. The
+ * geodesics of eq. (1) zig-zag through the noise that the projection leaves, and neighbouring
+ * points differ in f by more than the surface makes them differ: on a bearing sampled with noise of
+ * one point spacing, 0.47 spacings (RMS, after taking out f's scale) against a typical 0.23
+ * between clean neighbours, and f has 807 local maxima against 84 clean. Each maximum starts a
+ * supernode (Sec. 4.2), and a plateau broken into many becomes chips. One mean over about a
+ * dozen points divides independent noise by about 3.5, below the clean differences; it smooths
+ * at the scale at which the noise was found (the 1-ring of residualGrowth()), as the short-cut
+ * rule's vote does (core/short_cut.h).
+ * \param[in] graph   the kNN graph
+ * \param[in] values  one per vertex
+ * \param[in] num_threads  0 = all cores; the result does not depend on it */
+std::vector<float> neighbourhoodMean(const CsrGraph& graph, const std::vector<float>& values,
+                                     unsigned num_threads = 0);
+
 } // namespace pcl_ncut_seg
