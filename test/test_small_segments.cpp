@@ -205,3 +205,26 @@ TEST(ViewSmallSegment, SetterKeepsTheOldValueOnABadOne) {
   seg.setViewSmallSegment(0.0);
   EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.0);
 }
+
+TEST(ViewSmallSegment, TheOpenViewStagesDoNotChangeHowAViewIsAnalysed) {
+  // A view is a view whether or not its rim stages run: one start and, on this noisy view, f
+  // without the neighbourhood mean of whole surfaces (core/denoise.h). Two segmenters, so that
+  // the second analyses the view afresh with the stages off.
+  const auto cloud = test::discView(11, 0.02f);
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> on, off;
+  std::vector<pcl::PointIndices> out;
+  on.setInputCloud(cloud);
+  on.extract(out);
+  ASSERT_TRUE(on.getNoiseTest().projected);
+  off.setRimMerge(0.0);
+  off.setViewSmallSegment(0.0);
+  off.setInputCloud(cloud);
+  off.extract(out);
+  const std::vector<float> with = on.getCentrality(), without = off.getCentrality();
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    if (std::isfinite(with[i])) {
+      ASSERT_EQ(with[i], without[i]) << i;
+    }
+  }
+}

@@ -220,12 +220,13 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   duplicates_.clear();
   for (const auto& c : prepared.copies)
     duplicates_.emplace_back(valid[c.first], c.second);
-  // The rim, only for the open-view stages (turning one on later makes a new analysis:
-  // serves()).
+  // The rim of an open view (not in CAD mode), whether or not the open-view stages run: it
+  // decides how the view is analysed (one start, f without the noise's mean), which the cut
+  // parameters must not change.
   const bool organized = input_->isOrganized() && input_->width > 2 && input_->height > 2;
-  if (pcl_ncut_seg::cutNeeds(params_).rim && organized)
+  if (!params_.cad.enabled && organized)
     prepared.set.rim = organizedRim();
-  if (pcl_ncut_seg::cutNeeds(params_).rim && !organized) { // the core decides: one view?
+  if (!params_.cad.enabled && !organized) { // the core decides: one view?
     std::array<float, 3> origin;
     for (int d = 0; d < 3; ++d)
       origin[d] = static_cast<float>(input_->sensor_origin_[d] - prepared.centroid[d]);
