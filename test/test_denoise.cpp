@@ -161,8 +161,8 @@ TEST(Denoise, OnANoisyWholeSurfaceTheCentralityIsTakenThroughTheMeanOnce) {
   EXPECT_EQ(a.analysed, a.mean_of_raw);
   EXPECT_NE(a.analysed, a.raw);
 
-  // So does the same noisy cloud as an open view (it has a rim): a depth sensor's noise runs
-  // along its rays, and the projection takes it out.
+  // The same noisy cloud as an open view (it has a rim) keeps eq. (1)'s f: a depth sensor's
+  // noise runs along its rays, and the projection takes it out.
   std::vector<std::uint8_t> rim(kN, 0);
   rim[0] = 1;
   EXPECT_EQ(centralityBeforeAndAfter(noisy, params, rim).analysed, a.raw);

@@ -272,8 +272,8 @@ public:
   /// Per-point arrays have one entry per input cloud point; NaN or kNone where not used. With
   /// several starts (setStarts), those of the start whose segments extract() returned.
   /// \{
-  /** \brief Centrality f(p) of eq. (1) per input point, on a cloud the noise test finds noisy
-   * after the neighbourhood mean (setDenoise); NaN for points not segmented. */
+  /** \brief Centrality f(p) of eq. (1) per input point, on a noisy whole surface after the
+   * neighbourhood mean (setDenoise; not on an open view); NaN for points not segmented. */
   std::vector<float> getCentrality() const;
   /** \brief Input indices of the points where supernodes were born (local maxima of f). */
   std::vector<int> getLocalMaxima() const;

@@ -133,8 +133,9 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
           "an (H, W, 3) image), 1-based, 0 for points in no segment.")
       .def("get_labels", &Segmenter::labels, "The labels of the last segment() (int32, N).")
       .def("get_centrality", &Segmenter::centrality,
-           "Centrality f(p) of eq. (1) per point (float32, N), on a noisy cloud after the "
-           "neighbourhood mean (the denoise parameter); NaN for points not segmented.")
+           "Centrality f(p) of eq. (1) per point (float32, N), on a noisy whole surface after "
+           "the neighbourhood mean (the denoise parameter; not on an open view); NaN for points "
+           "not segmented.")
       .def("get_supernode_labels", &Segmenter::supernodeLabels, py::arg("refined") = true,
            "Supernode of each point (int32, N), after local refinement (refined=False: "
            "before); -1 for points not segmented.")
