@@ -7,6 +7,7 @@
 #include <pcl_ncut_seg/core/denoise.h>
 #include <pcl_ncut_seg/core/knn.h>
 #include <pcl_ncut_seg/core/pipeline.h>
+#include <pcl_ncut_seg/core/starts.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"
@@ -145,7 +146,8 @@ CentralityPair centralityBeforeAndAfter(const std::vector<float>& xyz, const Par
   NoiseTest noise;
   const CsrGraph graph = graphStage(moved, knn.data(), k, params.graph, true, 1, &noise);
   out.projected = noise.projected;
-  out.raw = centralityStage(graph, params, nullptr, times, {}).front().f;
+  const std::vector<std::uint32_t> rank = centralRanks(moved.data(), n); // as analyze()
+  out.raw = centralityStage(graph, params, rank.data(), times, {}).front().f;
   out.mean_of_raw = neighbourhoodMean(graph, out.raw, 1);
   return out;
 }

@@ -10,6 +10,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
 #include <set>
 
 using namespace pcl_ncut_seg;
@@ -91,4 +94,35 @@ TEST(Knn, DistinctMortonOrderMergesCopies) {
   EXPECT_EQ(plain.point, mortonOrder(random.data(), 2000));
   EXPECT_EQ(plain.rank, plain.point);
   EXPECT_TRUE(plain.copies.empty());
+}
+
+TEST(Knn, DistinctMortonOrderDoesNotDependOnTheOrderOfThePoints) {
+  // 300 points in few grid cells (a tiny box beside one far point), many sharing a cell, some
+  // at one position; reversed and shuffled, they give the same positions in the same order.
+  std::vector<float> xyz = test::randomPoints(300, 9);
+  for (float& c : xyz)
+    c = std::round(c * 8.0f) * 1e-3f;
+  xyz.insert(xyz.end(), {100.0f, 100.0f, 100.0f});
+  const std::size_t n = xyz.size() / 3;
+  auto positions = [](const std::vector<float>& pts) {
+    const DistinctMortonOrder order = distinctMortonOrder(pts.data(), pts.size() / 3);
+    std::vector<float> out;
+    for (std::uint32_t i : order.point)
+      out.insert(out.end(), pts.begin() + 3 * i, pts.begin() + 3 * i + 3);
+    return out;
+  };
+  const std::vector<float> reference = positions(xyz);
+  ASSERT_LT(reference.size(), xyz.size()); // there are copies
+  std::vector<std::size_t> perm(n);
+  std::iota(perm.begin(), perm.end(), std::size_t(0));
+  std::reverse(perm.begin(), perm.end());
+  for (int round = 0; round < 2; ++round) {
+    std::vector<float> moved(3 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d)
+        moved[3 * i + d] = xyz[3 * perm[i] + d];
+    EXPECT_EQ(positions(moved), reference) << "round " << round;
+    std::mt19937 rng(4);
+    std::shuffle(perm.begin(), perm.end(), rng);
+  }
 }

@@ -21,6 +21,8 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <string>
@@ -251,6 +253,17 @@ Fingerprint fingerprint(const Cloud::Ptr& cloud, unsigned threads, int segments)
 template <typename T> bool bitIdentical(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
+/// The same partition of the points, whatever the segments' numbers.
+bool samePartition(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
+  if (a.size() != b.size())
+    return false;
+  std::map<std::uint32_t, std::uint32_t> ab, ba;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (ab.emplace(a[i], b[i]).first->second != b[i] ||
+        ba.emplace(b[i], a[i]).first->second != a[i])
+      return false;
+  return true;
+}
 } // namespace
 
 TEST(Determinism, BitIdenticalAcrossRunsAndThreadCounts) {
@@ -284,5 +297,55 @@ TEST(Determinism, BitIdenticalAcrossRunsAndThreadCounts) {
         EXPECT_TRUE(bitIdentical(ref.refined, f.refined)) << threads << " threads";
         EXPECT_TRUE(bitIdentical(ref.ncuts, f.ncuts)) << threads << " threads";
       }
+  }
+}
+
+TEST(Determinism, BitIdenticalForAnyOrderOfThePoints) {
+  // The same points reversed and shuffled: per point (mapped back to the first order) the same
+  // segments, centrality and supernodes, and the same hierarchy, with the defaults (5 starts).
+  // Ties (a regular grid), copies and several components included.
+  Cloud::Ptr grid(new Cloud);
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      grid->push_back(
+          pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), (i - 15) * (i - 15) * 0.05f));
+  Cloud::Ptr dup(new Cloud(*makeDumbbell(1000, 5).cloud));
+  *dup += *dup;
+  const struct {
+    const char* name;
+    Cloud::Ptr cloud;
+  } cases[] = {{"hand", makeHand(3000, 12).cloud},
+               {"quadruped", makeQuadruped(3000, 13).cloud},
+               {"two objects", makeTwoObjects(2000, 14).cloud},
+               {"grid", grid},
+               {"duplicated dumbbell", dup}};
+  for (const auto& cs : cases) {
+    SCOPED_TRACE(cs.name);
+    const std::size_t n = cs.cloud->size();
+    const Fingerprint ref = fingerprint(cs.cloud, 2, 0);
+    ASSERT_EQ(ref.labels.size(), n);
+    std::vector<std::size_t> perm(n); // perm[i]: the point at position i of the new order
+    std::iota(perm.begin(), perm.end(), std::size_t(0));
+    std::reverse(perm.begin(), perm.end());
+    for (int round = 0; round < 3; ++round) {
+      Cloud::Ptr moved(new Cloud);
+      for (std::size_t i : perm)
+        moved->push_back((*cs.cloud)[i]);
+      const Fingerprint f = fingerprint(moved, 2, 0);
+      Fingerprint back = f; // mapped back to the first order
+      for (std::size_t i = 0; i < n; ++i) {
+        back.labels[perm[i]] = f.labels[i];
+        back.centrality[perm[i]] = f.centrality[i];
+        back.supernodes[perm[i]] = f.supernodes[i];
+        back.refined[perm[i]] = f.refined[i];
+      }
+      // Segments are numbered by their smallest index (the API's order): the same segments.
+      EXPECT_TRUE(samePartition(ref.labels, back.labels)) << "order " << round;
+      EXPECT_TRUE(bitIdentical(ref.centrality, back.centrality)) << "order " << round;
+      EXPECT_TRUE(bitIdentical(ref.supernodes, back.supernodes)) << "order " << round;
+      EXPECT_TRUE(bitIdentical(ref.refined, back.refined)) << "order " << round;
+      EXPECT_TRUE(bitIdentical(ref.ncuts, back.ncuts)) << "order " << round;
+      std::shuffle(perm.begin(), perm.end(), std::mt19937(static_cast<unsigned>(round + 1)));
+    }
   }
 }

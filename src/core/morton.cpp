@@ -47,8 +47,9 @@ std::vector<std::uint32_t> mortonOrder(const float* xyz, std::size_t n) {
 
 DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n) {
   const std::vector<std::uint32_t> code = mortonCodes(xyz, n);
-  std::vector<std::uint32_t> order = stableOrderByKey(code); // ties stay in index order
-  // Within a cell, equal positions: sort the cell's points by (x, y, z, index).
+  std::vector<std::uint32_t> order = stableOrderByKey(code);
+  // Within a cell, the points by (x, y, z, index): the vertices' order then depends on the
+  // positions alone, not on the input's order, and equal positions are adjacent.
   std::vector<std::uint32_t> first(n); // per point: the first point at its position
   std::vector<std::uint32_t> cell;
   auto less = [xyz](std::uint32_t a, std::uint32_t b) {
@@ -76,6 +77,7 @@ DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n) {
     if (j - i > 1) {
       cell.assign(order.begin() + i, order.begin() + j);
       std::sort(cell.begin(), cell.end(), less);
+      std::copy(cell.begin(), cell.end(), order.begin() + std::ptrdiff_t(i));
       for (std::size_t c = 0; c < cell.size(); ++c) {
         const bool copy = c > 0 && same(cell[c], cell[c - 1]);
         first[cell[c]] = copy ? first[cell[c - 1]] : cell[c];

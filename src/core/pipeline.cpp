@@ -154,6 +154,9 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   if (!params.cad.enabled && points.rim.empty() && points.sensor_origin)
     points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
                                params.execution.num_threads);
+  // Ties and the sampling's start by distance from the centroid: the same for any order of
+  // the points.
+  const std::vector<std::uint32_t> rank = centralRanks(points.xyz.data(), n);
   const bool keep_xyz =
       params.cad.enabled || needs.concavity || needs.crease || needs.rim || splitsCreases(params);
   if (!keep_xyz)
@@ -161,7 +164,6 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   times.knn += clock.lap();
   if (progress)
     progress("kNN", 1.0);
-  const std::uint32_t* rank = points.order.empty() ? nullptr : points.order.data();
   Analysis a;
   if (params.cad.enabled) {
     // Sec. 7: approximate normals from the caller; their time counts as kNN time (Table 1).
@@ -169,10 +171,11 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
         points.normals ? points.normals(graph)
                        : std::vector<float>(3 * n, std::numeric_limits<float>::quiet_NaN());
     times.knn += clock.lap();
-    a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank, times, progress);
+    a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank.data(), times,
+                   progress);
   } else {
-    a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank, times,
-                        progress, noise.projected);
+    a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank.data(),
+                        times, progress, noise.projected);
   }
   a.order = std::move(points.order);
   a.noise = noise;

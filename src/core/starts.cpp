@@ -22,6 +22,20 @@ std::uint64_t pairsWithin(std::vector<std::uint64_t>& keys) {
 }
 } // namespace
 
+std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n) {
+  std::vector<std::pair<double, std::uint32_t>> by_distance(n);
+  for (std::size_t v = 0; v < n; ++v) {
+    const float* p = xyz + 3 * v;
+    by_distance[v] = {double(p[0]) * p[0] + double(p[1]) * p[1] + double(p[2]) * p[2],
+                      static_cast<std::uint32_t>(v)};
+  }
+  std::sort(by_distance.begin(), by_distance.end());
+  std::vector<std::uint32_t> rank(n);
+  for (std::size_t r = 0; r < n; ++r)
+    rank[by_distance[r].second] = static_cast<std::uint32_t>(r);
+  return rank;
+}
+
 std::uint64_t pairDisagreements(const std::vector<std::uint32_t>& a,
                                 const std::vector<std::uint32_t>& b) {
   const std::size_t n = std::min(a.size(), b.size());

@@ -21,8 +21,8 @@ std::vector<std::uint32_t> mortonOrder(const float* xyz, std::size_t n);
 
 /** \brief The distinct positions among n points, in Morton order. */
 struct DistinctMortonOrder {
-  /// Per vertex (distinct position, in ascending Morton code, ties by index): the index of the
-  /// first point at its position.
+  /// Per vertex (distinct position, in ascending Morton code, ties by (x, y, z)): the index of
+  /// the first point at its position.
   std::vector<std::uint32_t> point;
   /// Per vertex: its rank among the vertices in index order.
   std::vector<std::uint32_t> rank;
@@ -31,7 +31,8 @@ struct DistinctMortonOrder {
 };
 
 /** \brief Points at exactly the same coordinates merged into one vertex (the first point at
- * the position), the vertices in Morton order. Equal positions have equal codes, so copies are
+ * the position), the vertices in Morton order, ties by position: the same vertices in the same
+ * order for any order of the points. Equal positions have equal codes, so copies are
  * found among points of one grid cell: a radix sort on the code, then a sort within cells. */
 DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n);
 

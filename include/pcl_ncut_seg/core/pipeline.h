@@ -50,8 +50,9 @@ struct PointSet {
   std::vector<float> xyz;         ///< 3 floats per vertex, best centred (lengths in float)
   std::vector<std::uint32_t> knn; ///< k per vertex, nearest first; kNone pads a short row
   std::size_t k = 0;              ///< neighbours per row of knn
-  /// Per vertex, its rank in the input's order (distinct): ties in the centrality go by it,
-  /// and segments are numbered by their first vertex in it. Empty: the vertex order.
+  /// Per vertex, its rank in the input's order (distinct): segments are numbered by their
+  /// first vertex in it. Empty: the vertex order. (Ties in the centrality go by centralRanks(),
+  /// core/starts.h, which the order of the points does not change.)
   std::vector<std::uint32_t> order;
   NormalSource normals; ///< CAD mode; empty: CAD mode fails (no normals)
   /// Per vertex, 1 where an open view of the surface ends (core/rim_merge.h); empty: a

@@ -14,6 +14,17 @@
 
 namespace pcl_ncut_seg {
 
+/** \brief Per vertex, its rank by distance from the origin (put the points' centroid there),
+ * ties by index. Ties in the centrality go by it, and the farthest-point sampling begins at
+ * the point farthest from the rank-0 vertex (Sec. 4.1, step 4: "an arbitrary point"). Both
+ * then depend on the surface and its centroid, not on the order in which its points came (the
+ * vertices' own order, core/morton.h, does not either), and a rotation changes them only
+ * through rounding.
+ * \param[in] xyz  3 floats per vertex
+ * \param[in] n    vertices
+ * \return per vertex its rank, 0 .. n - 1 */
+std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n);
+
 /** \brief The number of pairs of points that one partition puts together and the other apart
  * (the Rand distance times n(n-1)/2).
  * \param[in] a, b  per point, its segment; equal sizes */
