@@ -171,8 +171,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
         points.normals ? points.normals(graph)
                        : std::vector<float>(3 * n, std::numeric_limits<float>::quiet_NaN());
     times.knn += clock.lap();
-    a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank.data(), times,
-                   progress);
+    a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank.data(), times, progress);
   } else {
     a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank.data(),
                         times, progress, noise.projected);
