@@ -201,7 +201,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     return false;
   // Points at exactly the position of an earlier one are analysed once and share its segment:
   // copies would fill each other's k nearest neighbours with zero-length edges. Vertices are
-  // numbered along a Morton curve (core/pipeline.h); ties and segment numbers go by input order.
+  // numbered along a Morton curve (core/pipeline.h); ties go by the distance from the centroid
+  // (core/starts.h), so the order of the points changes only the segments' numbers.
   std::vector<float> xyz(3 * valid.size());
   for (std::size_t i = 0; i < valid.size(); ++i) {
     const PointT& p = (*input_)[valid[i]];
