@@ -253,6 +253,29 @@ Fingerprint fingerprint(const Cloud::Ptr& cloud, unsigned threads, int segments)
 template <typename T> bool bitIdentical(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
 }
+/// Shapes with many components, with ties (a regular grid), and with duplicates; each with the
+/// default rule (0) or a count.
+struct DeterminismCase {
+  const char* name;
+  Cloud::Ptr cloud;
+  int segments;
+};
+
+std::vector<DeterminismCase> determinismCases() {
+  Cloud::Ptr grid(new Cloud);
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      grid->push_back(
+          pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), (i - 15) * (i - 15) * 0.05f));
+  Cloud::Ptr dup(new Cloud(*makeDumbbell(1000, 5).cloud));
+  *dup += *dup;
+  return {{"hand", makeHand(3000, 12).cloud, 0},
+          {"quadruped", makeQuadruped(3000, 13).cloud, 7},
+          {"two objects", makeTwoObjects(2000, 14).cloud, 0},
+          {"grid", grid, 4},
+          {"duplicated dumbbell", dup, 3}};
+}
+
 /// The same partition of the points, whatever the segments' numbers.
 bool samePartition(const std::vector<std::uint32_t>& a, const std::vector<std::uint32_t>& b) {
   if (a.size() != b.size())
@@ -267,24 +290,7 @@ bool samePartition(const std::vector<std::uint32_t>& a, const std::vector<std::u
 } // namespace
 
 TEST(Determinism, BitIdenticalAcrossRunsAndThreadCounts) {
-  // Shapes with many components, with ties (a regular grid), and with duplicates.
-  Cloud::Ptr grid(new Cloud);
-  for (int i = 0; i < 30; ++i)
-    for (int j = 0; j < 30; ++j)
-      grid->push_back(
-          pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), (i - 15) * (i - 15) * 0.05f));
-  Cloud::Ptr dup(new Cloud(*makeDumbbell(1000, 5).cloud));
-  *dup += *dup;
-  const struct {
-    const char* name;
-    Cloud::Ptr cloud;
-    int segments;
-  } cases[] = {{"hand", makeHand(3000, 12).cloud, 0},
-               {"quadruped", makeQuadruped(3000, 13).cloud, 7},
-               {"two objects", makeTwoObjects(2000, 14).cloud, 0},
-               {"grid", grid, 4},
-               {"duplicated dumbbell", dup, 3}};
-  for (const auto& cs : cases) {
+  for (const DeterminismCase& cs : determinismCases()) {
     SCOPED_TRACE(cs.name);
     const Fingerprint ref = fingerprint(cs.cloud, 1, cs.segments);
     ASSERT_EQ(ref.labels.size(), cs.cloud->size());
@@ -302,27 +308,12 @@ TEST(Determinism, BitIdenticalAcrossRunsAndThreadCounts) {
 
 TEST(Determinism, BitIdenticalForAnyOrderOfThePoints) {
   // The same points reversed and shuffled: per point (mapped back to the first order) the same
-  // segments, centrality and supernodes, and the same hierarchy, with the defaults (5 starts).
-  // Ties (a regular grid), copies and several components included.
-  Cloud::Ptr grid(new Cloud);
-  for (int i = 0; i < 30; ++i)
-    for (int j = 0; j < 30; ++j)
-      grid->push_back(
-          pcl::PointXYZ(static_cast<float>(i), static_cast<float>(j), (i - 15) * (i - 15) * 0.05f));
-  Cloud::Ptr dup(new Cloud(*makeDumbbell(1000, 5).cloud));
-  *dup += *dup;
-  const struct {
-    const char* name;
-    Cloud::Ptr cloud;
-  } cases[] = {{"hand", makeHand(3000, 12).cloud},
-               {"quadruped", makeQuadruped(3000, 13).cloud},
-               {"two objects", makeTwoObjects(2000, 14).cloud},
-               {"grid", grid},
-               {"duplicated dumbbell", dup}};
-  for (const auto& cs : cases) {
+  // segments, centrality and supernodes, and the same hierarchy, with five starts (the default)
+  // and the default rule or a count.
+  for (const DeterminismCase& cs : determinismCases()) {
     SCOPED_TRACE(cs.name);
     const std::size_t n = cs.cloud->size();
-    const Fingerprint ref = fingerprint(cs.cloud, 2, 0);
+    const Fingerprint ref = fingerprint(cs.cloud, 2, cs.segments);
     ASSERT_EQ(ref.labels.size(), n);
     std::vector<std::size_t> perm(n); // perm[i]: the point at position i of the new order
     std::iota(perm.begin(), perm.end(), std::size_t(0));
@@ -331,7 +322,7 @@ TEST(Determinism, BitIdenticalForAnyOrderOfThePoints) {
       Cloud::Ptr moved(new Cloud);
       for (std::size_t i : perm)
         moved->push_back((*cs.cloud)[i]);
-      const Fingerprint f = fingerprint(moved, 2, 0);
+      const Fingerprint f = fingerprint(moved, 2, cs.segments);
       Fingerprint back = f; // mapped back to the first order
       for (std::size_t i = 0; i < n; ++i) {
         back.labels[perm[i]] = f.labels[i];
