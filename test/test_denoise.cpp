@@ -146,7 +146,9 @@ CentralityPair centralityBeforeAndAfter(const std::vector<float>& xyz, const Par
   NoiseTest noise;
   const CsrGraph graph = graphStage(moved, knn.data(), k, params.graph, true, 1, &noise);
   out.projected = noise.projected;
-  const std::vector<std::uint32_t> rank = centralRanks(moved.data(), n); // as analyze()
+  std::vector<std::uint32_t> component;
+  connectedComponents(graph, component);
+  const std::vector<std::uint32_t> rank = centralRanks(moved.data(), n, component); // as analyze()
   out.raw = centralityStage(graph, params, rank.data(), times, {}).front().f;
   out.mean_of_raw = neighbourhoodMean(graph, out.raw, 1);
   return out;
@@ -169,11 +171,45 @@ TEST(Denoise, OnANoisyWholeSurfaceTheCentralityIsTakenThroughTheMeanOnce) {
   rim[0] = 1;
   EXPECT_EQ(centralityBeforeAndAfter(noisy, params, rim).analysed, a.raw);
 
-  // A clean cloud keeps eq. (1)'s f as it is.
-  const std::vector<float> clean = test::xyzOf(*test::makeHand(4000, 7).cloud);
-  const CentralityPair b = centralityBeforeAndAfter(clean, params);
+  // A clean, evenly spread cloud keeps eq. (1)'s f as it is.
+  const CentralityPair b = centralityBeforeAndAfter(sphere(kN, 0.0), params);
   ASSERT_FALSE(b.projected);
   EXPECT_EQ(b.analysed, b.raw);
+}
+
+TEST(Denoise, SamplingIrregularityTellsPointsDrawnAtRandomFromEvenOnes) {
+  // Points drawn at random: about 0.45, whatever the density and its gradient.
+  for (double ratio : {1.0, 10.0}) {
+    SCOPED_TRACE(ratio);
+    test::SamplingOptions options;
+    options.density_ratio = ratio;
+    const std::vector<float> random = test::xyzOf(*test::makeHand(4000, 7, options).cloud);
+    const double v = samplingIrregularity(test::kdTreeKnnGraph(random, 10));
+    EXPECT_GT(v, 0.38);
+    EXPECT_LT(v, 0.52);
+  }
+  // Spread evenly (a Fibonacci lattice), with or without noise along the normal and across.
+  EXPECT_LT(samplingIrregularity(test::kdTreeKnnGraph(sphere(kN, 0.0), 10)), 0.15);
+  EXPECT_LT(samplingIrregularity(test::kdTreeKnnGraph(sphere(kN, 0.05 * kSpacing), 10)), 0.2);
+  // Too few vertices with an edge to measure.
+  EXPECT_EQ(samplingIrregularity(CsrGraph{}), 0.0);
+}
+
+TEST(Denoise, OnAWholeSurfaceDrawnAtRandomTheCentralityIsTakenThroughTheMeanOnce) {
+  Parameters params;
+  params.centrality.starts = 1;
+  params.graph.max_points.reset();
+  const std::vector<float> random = test::xyzOf(*test::makeHand(4000, 7).cloud);
+  const CentralityPair a = centralityBeforeAndAfter(random, params);
+  ASSERT_FALSE(a.projected); // clean: not projected, but averaged
+  EXPECT_EQ(a.analysed, a.mean_of_raw);
+  EXPECT_NE(a.analysed, a.raw);
+  // With the rule off, eq. (1)'s f as it is.
+  params.graph.irregular_sampling.reset();
+  EXPECT_EQ(centralityBeforeAndAfter(random, params).analysed, a.raw);
+  // With a bound above the cloud's irregularity, too.
+  params.graph.irregular_sampling = 0.6;
+  EXPECT_EQ(centralityBeforeAndAfter(random, params).analysed, a.raw);
 }
 
 TEST(Denoise, CleanSurfacesGiveTheSameSegmentsWithAndWithout) {
@@ -223,6 +259,14 @@ TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
   seg.extract(segments);
   EXPECT_EQ(seg.getNoiseTest().residual_growth, 0.0);
   EXPECT_FALSE(seg.getNoiseTest().projected);
+
+  // The hand's points are drawn at random.
+  EXPECT_GT(seg.getNoiseTest().sampling_irregularity, 0.3);
+  EXPECT_TRUE(seg.getNoiseTest().irregular);
+  seg.setIrregularSampling(0.0); // off: not measured
+  seg.extract(segments);
+  EXPECT_EQ(seg.getNoiseTest().sampling_irregularity, 0.0);
+  EXPECT_FALSE(seg.getNoiseTest().irregular);
 }
 
 TEST(Denoise, SetterRejectsBadValues) {
@@ -231,5 +275,11 @@ TEST(Denoise, SetterRejectsBadValues) {
   for (double bad : {1.0, 0.5, -2.0, std::nan("")}) {
     seg.setDenoise(bad);
     EXPECT_EQ(seg.getDenoise(), 1.5);
+  }
+  EXPECT_EQ(seg.getIrregularSampling(), 0.3); // the default
+  seg.setIrregularSampling(0.25);
+  for (double bad : {-0.1, std::nan("")}) {
+    seg.setIrregularSampling(bad);
+    EXPECT_EQ(seg.getIrregularSampling(), 0.25);
   }
 }

@@ -314,7 +314,7 @@ TEST(Robustness, SeveralFarApartObjects) {
 
 TEST(Robustness, DenseClusterWithOneFarOutlier) {
   // The outlier is its own connected component, so its own segment; the rest is segmented
-  // as without it.
+  // as without it (its sampling starts from its own centroid, core/starts.h).
   const LabeledShape hand = makeHand(3000, 8);
   Cloud::Ptr c(new Cloud(*hand.cloud));
   c->push_back(pcl::PointXYZ(1e4f, -3e3f, 5e2f));

@@ -196,3 +196,13 @@ TEST(Starts, SetterKeepsTheOldValueOnABadOne) {
   EXPECT_EQ(seg.getStarts(), 1);
   EXPECT_EQ(Parameters::paper().centrality.starts, 1);
 }
+
+TEST(Starts, CentralRanksGoByTheDistanceFromEachComponentsCentroid) {
+  // Component 0: x = -1, 0, 3 (centroid 2/3); component 1: x = 10, 12 (centroid 11), tied.
+  const std::vector<float> xyz = {-1, 0, 0, 10, 0, 0, 0, 0, 0, 3, 0, 0, 12, 0, 0};
+  const std::vector<std::uint32_t> component = {0, 1, 0, 0, 1};
+  // Distances: 5/3, 1, 2/3, 7/3, 1; ties by index.
+  EXPECT_EQ(centralRanks(xyz.data(), 5, component), (std::vector<std::uint32_t>{3, 1, 0, 4, 2}));
+  // Without components: from the origin.
+  EXPECT_EQ(centralRanks(xyz.data(), 5), (std::vector<std::uint32_t>{1, 3, 0, 2, 4}));
+}

@@ -328,6 +328,11 @@ void printReport(const Segmenter& seg, std::size_t num_segments) {
     info(noise.projected ? " (noisy: points projected onto their local planes)\n"
                          : " (no projection)\n");
   }
+  if (noise.sampling_irregularity > 0.0) {
+    info("spacing: irregularity ");
+    value("%.3f", noise.sampling_irregularity);
+    info(noise.irregular ? " (irregular: centrality averaged once)\n" : " (even)\n");
+  }
   info("mem  : ");
   value("%.1f", static_cast<double>(peakMemoryBytes()) / (1024.0 * 1024.0));
   info(" MiB peak resident memory\n");

@@ -198,6 +198,13 @@ public:
    * \param[in] growth  graph.denoise, > 1; 0: off */
   void setDenoise(double growth);
   double getDenoise() const { return params_.graph.denoise.value_or(0.0); }
+  /** \brief Irregular sampling (core/denoise.h): when the points' spacings vary at least this
+   * much (samplingIrregularity(): about 0.45 for points drawn at random, 0.05-0.15 for points
+   * spread evenly), the centrality of a whole surface is averaged over each point's
+   * neighbourhood once, as on a noisy one.
+   * \param[in] variation  graph.irregular_sampling, > 0; 0: off */
+  void setIrregularSampling(double variation);
+  double getIrregularSampling() const { return params_.graph.irregular_sampling.value_or(0.0); }
   /** \brief The analysis' resolution (core/subsample.h): a cloud of more distinct points is
    * analysed on an even subset of at most this many (one per cube of a grid, whatever their
    * order), and every other point takes the segment of its nearest analysed point.
@@ -272,8 +279,9 @@ public:
   /// Per-point arrays have one entry per input cloud point; NaN or kNone where not used. With
   /// several starts (setStarts), those of the start whose segments extract() returned.
   /// \{
-  /** \brief Centrality f(p) of eq. (1) per input point, on a noisy whole surface after the
-   * neighbourhood mean (setDenoise; not on an open view); NaN for points not segmented. */
+  /** \brief Centrality f(p) of eq. (1) per input point, on a noisy or irregularly sampled
+   * whole surface after the neighbourhood mean (setDenoise, setIrregularSampling; not on an open
+   * view); NaN for points not segmented. */
   std::vector<float> getCentrality() const;
   /** \brief Input indices of the points where supernodes were born (local maxima of f). */
   std::vector<int> getLocalMaxima() const;
@@ -288,7 +296,8 @@ public:
   std::size_t getNumberOfSupernodes(bool refined) const;
   /** \brief The last analysis' noise test (setDenoise): the residual growth of the points'
    * local plane fits (about 1 for noise, 4 for curvature; 0 when not measured: denoise off,
-   * CAD mode or no analysis yet) and whether the points were projected onto their planes. */
+   * CAD mode or no analysis yet) and whether the points were projected onto their planes; and
+   * (setIrregularSampling) the sampling irregularity and whether it counted as irregular. */
   pcl_ncut_seg::NoiseTest getNoiseTest() const;
   /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2). */
   const pcl_ncut_seg::Hierarchy& getHierarchy() const { return result_.hierarchy; }

@@ -169,7 +169,10 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
                              "The last analysis' noise test (the denoise parameter): "
                              "residual_growth of the local plane fits (about 1 for noise, 4 "
                              "for curvature; 0 when not measured) and whether the points were "
-                             "projected onto their local planes.")
+                             "projected onto their local planes; sampling_irregularity (the "
+                             "irregular_sampling parameter: about 0.45 for points drawn at "
+                             "random, 0.05-0.15 for even ones; 0 when not measured) and whether "
+                             "the centrality was averaged for it (irregular).")
       .def_property_readonly("phase_times", &Segmenter::phaseTimes,
                              "Seconds per phase of the last segment() (knn, centrality, "
                              "supernodes, refinement, hierarchy, points, total); the analysis "

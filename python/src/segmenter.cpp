@@ -279,6 +279,8 @@ py::dict Segmenter::noiseTest() const {
   const pcl_ncut_seg::NoiseTest test = seg_.getNoiseTest();
   py::dict d;
   d["residual_growth"] = test.residual_growth;
+  d["sampling_irregularity"] = test.sampling_irregularity;
+  d["irregular"] = test.irregular;
   d["projected"] = test.projected;
   return d;
 }

@@ -9,7 +9,7 @@ TABLE = pcl_ncut_seg.parameter_table()
 
 # Per parameter, a valid value other than its default (every row must have one).
 OTHER = {
-    "k": 11, "bridge_gap": None, "denoise": None, "max_points": 1000, "centrality_samples": 30, "centrality": "exact",
+    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": 0.4, "max_points": 1000, "centrality_samples": 30, "centrality": "exact",
     "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
     "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
@@ -154,9 +154,13 @@ def test_the_noise_test_is_reported(points):
     noisy.segment(points + rng.normal(0.0, 0.5 * spacing, points.shape))
     assert noisy.noise_test["residual_growth"] < 2.0
     assert noisy.noise_test["projected"] is True
-    off = pcl_ncut_seg.Segmenter(denoise=None)
+    off = pcl_ncut_seg.Segmenter(denoise=None, irregular_sampling=None)
     off.segment(points)
-    assert off.noise_test == {"residual_growth": 0.0, "projected": False}
+    assert off.noise_test == {"residual_growth": 0.0, "projected": False,
+                              "sampling_irregularity": 0.0, "irregular": False}
+    # The clean points are drawn at random (the hand's samples): irregular, averaged once.
+    assert clean.noise_test["sampling_irregularity"] > 0.3
+    assert clean.noise_test["irregular"] is True
 
 
 def disc_view(noise=0.0005, seed=7):

@@ -20,6 +20,10 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
   const int threads = usableThreads(num_threads);
   CsrGraph graph = buildSymmetricKnnGraph(xyz.data(), n, knn, k, threads);
   NoiseTest test;
+  if (may_denoise && params.irregular_sampling) {
+    test.sampling_irregularity = samplingIrregularity(graph);
+    test.irregular = test.sampling_irregularity >= *params.irregular_sampling;
+  }
   if (may_denoise && params.denoise) {
     test.residual_growth = residualGrowth(graph, xyz.data(), num_threads);
     test.projected = isNoisy(test.residual_growth, *params.denoise);

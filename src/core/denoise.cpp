@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -98,6 +99,31 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
     sum2 += rms2[i];
   }
   return sum1 > 0.0 ? sum2 / sum1 : 0.0;
+}
+
+double samplingIrregularity(const CsrGraph& graph) {
+  double sum = 0.0, sum_sq = 0.0;
+  std::size_t count = 0;
+  for (std::uint32_t p = 0; p < graph.numVertices(); ++p) {
+    const std::uint32_t begin = graph.offsets[p], end = graph.offsets[p + 1];
+    if (begin == end)
+      continue;
+    double shortest = graph.lengths[begin], total = 0.0;
+    for (std::uint32_t e = begin; e < end; ++e) {
+      shortest = std::min<double>(shortest, graph.lengths[e]);
+      total += graph.lengths[e];
+    }
+    if (!(total > 0.0))
+      continue;
+    const double ratio = shortest * (end - begin) / total;
+    sum += ratio;
+    sum_sq += ratio * ratio;
+    ++count;
+  }
+  if (count < 2 || !(sum > 0.0))
+    return 0.0;
+  const double mean = sum / count;
+  return std::sqrt(std::max(0.0, sum_sq / count - mean * mean)) / mean;
 }
 
 std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,

@@ -35,6 +35,14 @@ void graphRows(Rows& t) {
           "average the centrality over each point's neighbourhood once; not in CAD mode",
           false),
       above(1), FIELD(graph.denoise), "off"));
+  t.push_back(number<double, std::optional<double>>(
+      row("irregular_sampling", "graph.irregular_sampling", S::Graph, K::Real, "V",
+          "irregular sampling: when the points' spacings vary by at least V (the coefficient of "
+          "variation of each point's shortest over its mean kNN edge: about 0.45 for points "
+          "drawn at random, 0.05-0.2 for points spread evenly), average the centrality over "
+          "each point's neighbourhood once, but on an open view; not in CAD mode",
+          false),
+      above(0), FIELD(graph.irregular_sampling), "off"));
   t.push_back(number<int, std::optional<int>>(
       row("max_points", "graph.max_points", S::Graph, K::Integer, "N",
           "the analysis' resolution: a denser cloud is analysed on at most N of its points (the "

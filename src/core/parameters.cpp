@@ -31,6 +31,7 @@ Parameters Parameters::paper() {
   Parameters p;
   p.graph.bridge_gap.reset();
   p.graph.denoise.reset();
+  p.graph.irregular_sampling.reset();
   p.graph.max_points.reset();
   p.centrality.mode = CentralityMode::Exact;
   p.centrality.starts = 1;

@@ -65,20 +65,21 @@ DistinctStarts distinctStarts(const std::vector<Centrality>& f) {
 
 /// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
 /// supernodes, once per start of eq. (1)'s sampling with its own samples (core/starts.h); the
-/// bends are measured once. noisy: the graph stage projected the points.
+/// bends are measured once. average: the graph stage found the points noisy (and projected
+/// them) or drawn at random (core/denoise.h).
 Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
-                         const PhaseProgressFn& progress, bool noisy) {
-  // A noisy whole surface has its centrality averaged over neighbourhoods (core/denoise.h), a
-  // view not: a depth sensor's noise runs along its rays, mostly along the normals that the
-  // projection takes it out along (docs/sampling.md).
+                         const PhaseProgressFn& progress, bool average) {
+  // A noisy whole surface, or one drawn at random, has its centrality averaged over
+  // neighbourhoods (core/denoise.h), a view not: a depth sensor's noise runs along its rays,
+  // mostly along the normals that the projection takes it out along (docs/sampling.md).
   // One view (it has a rim): one start. Its parts are decided more by the rim stages than by
   // the start, and a depth camera's frame rate counts (docs/views.md).
   const auto starts =
       rim.empty() ? static_cast<std::size_t>(std::max(1, params.centrality.starts)) : 1;
   std::vector<Centrality> f =
-      centralityStage(graph, params, tie_rank, times, progress, starts, noisy && rim.empty());
+      centralityStage(graph, params, tie_rank, times, progress, starts, average && rim.empty());
   const DistinctStarts distinct = distinctStarts(f);
   // Phase by phase over the starts, so that progress reports each phase once.
   const std::size_t num = distinct.start.size();
@@ -154,9 +155,11 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   if (!params.cad.enabled && points.rim.empty() && points.sensor_origin)
     points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
                                params.execution.num_threads);
-  // Ties and the sampling's start by distance from the centroid: the same for any order of
-  // the points.
-  const std::vector<std::uint32_t> rank = centralRanks(points.xyz.data(), n);
+  // Ties and the sampling's start by distance from the centroid of each connected component:
+  // the same for any order of the points, and a far outlier moves no other component's start.
+  std::vector<std::uint32_t> component;
+  connectedComponents(graph, component);
+  const std::vector<std::uint32_t> rank = centralRanks(points.xyz.data(), n, component);
   const bool keep_xyz =
       params.cad.enabled || needs.concavity || needs.crease || needs.rim || splitsCreases(params);
   if (!keep_xyz)
@@ -174,7 +177,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank.data(), times, progress);
   } else {
     a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank.data(),
-                        times, progress, noise.projected);
+                        times, progress, noise.projected || noise.irregular);
   }
   a.order = std::move(points.order);
   a.noise = noise;

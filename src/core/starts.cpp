@@ -22,12 +22,28 @@ std::uint64_t pairsWithin(std::vector<std::uint64_t>& keys) {
 }
 } // namespace
 
-std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n) {
+std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n,
+                                        const std::vector<std::uint32_t>& component) {
+  const std::size_t c = component.size() == n && n > 0
+                            ? 1 + *std::max_element(component.begin(), component.end())
+                            : 1;
+  std::vector<double> centre(3 * c, 0.0);
+  if (c > 1) {
+    std::vector<std::size_t> count(c, 0);
+    for (std::size_t v = 0; v < n; ++v) {
+      ++count[component[v]];
+      for (int i = 0; i < 3; ++i)
+        centre[3 * component[v] + i] += xyz[3 * v + i];
+    }
+    for (std::size_t k = 0; k < c; ++k)
+      for (int i = 0; i < 3; ++i)
+        centre[3 * k + i] /= static_cast<double>(count[k]);
+  }
   std::vector<std::pair<double, std::uint32_t>> by_distance(n);
   for (std::size_t v = 0; v < n; ++v) {
-    const float* p = xyz + 3 * v;
-    by_distance[v] = {double(p[0]) * p[0] + double(p[1]) * p[1] + double(p[2]) * p[2],
-                      static_cast<std::uint32_t>(v)};
+    const double* o = centre.data() + (c > 1 ? 3 * component[v] : 0);
+    const double x = xyz[3 * v] - o[0], y = xyz[3 * v + 1] - o[1], z = xyz[3 * v + 2] - o[2];
+    by_distance[v] = {x * x + y * y + z * z, static_cast<std::uint32_t>(v)};
   }
   std::sort(by_distance.begin(), by_distance.end());
   std::vector<std::uint32_t> rank(n);

@@ -14,7 +14,9 @@ namespace pcl_ncut_seg {
 /** \brief Graph stage (Sec. 4.1): the symmetric kNN graph with Euclidean lengths; when
  * graph.denoise is set, may_denoise holds and the cloud counts as noisy (core/denoise.h), the
  * points projected onto their local planes and the graph's lengths measured again; then
- * bridges across sampling gaps between its components (graph.bridge_gap).
+ * bridges across sampling gaps between its components (graph.bridge_gap). When
+ * graph.irregular_sampling is set and may_denoise holds, the sampling irregularity is measured
+ * first (samplingIrregularity()).
  * \param[in,out] xyz  3 floats per vertex; projected when the cloud was noisy
  * \param[in] knn      k per vertex (kNone pads a row)
  * \param[out] noise   when given, the noise test's outcome */
@@ -24,11 +26,11 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
 
 /** \brief Centrality stage (Sec. 4.1): f of eq. (1) from each of num_starts starts of the
  * farthest-point sampling (computeCentralities(), or the coarse graph's in Fast mode), on a
- * noisy cloud then taken through neighbourhoodMean() (core/denoise.h).
+ * noisy or randomly drawn cloud then taken through neighbourhoodMean() (core/denoise.h).
  * Time is added to times.centrality.
  * \param[in] tie_rank  per vertex, distinct ranks for ties in f (nullptr: the vertex index)
- * \param[in] noisy     a whole surface whose points the graph stage projected
- *                      (NoiseTest::projected; not an open view) */
+ * \param[in] noisy     a whole surface whose points the graph stage projected or found
+ *                      drawn at random (NoiseTest::projected, irregular; not an open view) */
 std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters& params,
                                         const std::uint32_t* tie_rank, PhaseTimes& times,
                                         const PhaseProgressFn& progress, std::size_t num_starts = 1,

@@ -25,10 +25,29 @@ namespace pcl_ncut_seg {
  * \param[in] num_threads  0 = all cores; the result does not depend on it */
 double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads = 0);
 
+/** \brief Sampling irregularity: over the vertices with an edge, the coefficient of variation
+ * (standard deviation over mean) of the ratio of each vertex's shortest graph edge to its mean
+ * graph edge. The ratio does not depend on the density, so neither does the result. About 0.45
+ * for points drawn at random (uniformly by area, or with any smooth density: locally their
+ * spacings are those of a Poisson process), 0.05-0.2 for points spread evenly (a mesh's face
+ * centroids, a sensor's pixel grid), 0.2-0.25 for the grid subsample of points drawn at random
+ * (core/subsample.h); 0 for fewer than 2 vertices with an edge. Summed in vertex order.
+ *
+ * Drawn at random, neighbouring points are closer or farther apart than the surface makes
+ * them, the geodesics of eq. (1) zig-zag through the clumps and gaps as through noise, and f
+ * has shallow maxima that belong to the draw: on a whole surface whose irregularity is at
+ * least graph.irregular_sampling (0.3: between even, at most about 0.2, and random) f is
+ * taken through neighbourhoodMean() once, as on a noisy one. On evenly spread points the
+ * shallow maxima belong to the surface, and the mean would blur them.
+ * \param[in] graph  the symmetric kNN graph (before any bridges) */
+double samplingIrregularity(const CsrGraph& graph);
+
 /** \brief What the graph stage found out about noise. */
 struct NoiseTest {
-  double residual_growth = 0.0; ///< residualGrowth(); 0 when it was not measured
-  bool projected = false;       ///< the points were projected onto their local planes
+  double residual_growth = 0.0;       ///< residualGrowth(); 0 when it was not measured
+  bool projected = false;             ///< the points were projected onto their local planes
+  double sampling_irregularity = 0.0; ///< samplingIrregularity(); 0 when it was not measured
+  bool irregular = false;             ///< at least graph.irregular_sampling: f is averaged once
 };
 
 /** \brief Whether a cloud counts as noisy: a residual growth below the bound (2: halfway

@@ -20,10 +20,19 @@ namespace pcl_ncut_seg {
  * then depend on the surface and its centroid, not on the order in which its points came (the
  * vertices' own order, core/morton.h, does not either), and a rotation changes them only
  * through rounding.
+ *
+ * With component given, by distance from the centroid of the vertex's own connected component
+ * (a component with one vertex: 0): the sampling runs per component (Sec. 4.1), so each
+ * begins from its own centre, and a far outlier, a component of its own, moves no other
+ * component's start. Components of more than one vertex are centred in double, in vertex
+ * order; a cloud of one component keeps the origin (the points' centroid, where the pipeline
+ * put it).
  * \param[in] xyz  3 floats per vertex
  * \param[in] n    vertices
+ * \param[in] component  per vertex its component (connectedComponents()); empty: one
  * \return per vertex its rank, 0 .. n - 1 */
-std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n);
+std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n,
+                                        const std::vector<std::uint32_t>& component = {});
 
 /** \brief The number of pairs of points that one partition puts together and the other apart
  * (the Rand distance times n(n-1)/2).

@@ -63,6 +63,8 @@ PCL_NCUT_SEG_SETTER(setCreaseSplit, double,
 PCL_NCUT_SEG_SETTER(setCreaseCut, double, p.refinement.crease_cut = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setBridgeGap, double, p.graph.bridge_gap = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setDenoise, double, p.graph.denoise = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setIrregularSampling, double,
+                    p.graph.irregular_sampling = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setMaxPoints, int,
                     p.graph.max_points = value == 0 ? std::nullopt : std::optional<int>(value))
 PCL_NCUT_SEG_SETTER(setCadMode, bool, p.cad.enabled = value)
