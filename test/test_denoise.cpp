@@ -199,6 +199,7 @@ TEST(Denoise, OnAWholeSurfaceDrawnAtRandomTheCentralityIsTakenThroughTheMeanOnce
   Parameters params;
   params.centrality.starts = 1;
   params.graph.max_points.reset();
+  params.graph.irregular_sampling = 0.3; // off by default
   const std::vector<float> random = test::xyzOf(*test::makeHand(4000, 7).cloud);
   const CentralityPair a = centralityBeforeAndAfter(random, params);
   ASSERT_FALSE(a.projected); // clean: not projected, but averaged
@@ -260,7 +261,10 @@ TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
   EXPECT_EQ(seg.getNoiseTest().residual_growth, 0.0);
   EXPECT_FALSE(seg.getNoiseTest().projected);
 
-  // The hand's points are drawn at random.
+  // Off by default: not measured. On, the hand's points are drawn at random.
+  EXPECT_EQ(seg.getNoiseTest().sampling_irregularity, 0.0);
+  seg.setIrregularSampling(0.3);
+  seg.extract(segments);
   EXPECT_GT(seg.getNoiseTest().sampling_irregularity, 0.3);
   EXPECT_TRUE(seg.getNoiseTest().irregular);
   seg.setIrregularSampling(0.0); // off: not measured
@@ -276,7 +280,7 @@ TEST(Denoise, SetterRejectsBadValues) {
     seg.setDenoise(bad);
     EXPECT_EQ(seg.getDenoise(), 1.5);
   }
-  EXPECT_EQ(seg.getIrregularSampling(), 0.3); // the default
+  EXPECT_EQ(seg.getIrregularSampling(), 0.0); // off by default
   seg.setIrregularSampling(0.25);
   for (double bad : {-0.1, std::nan("")}) {
     seg.setIrregularSampling(bad);

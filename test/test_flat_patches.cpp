@@ -124,9 +124,6 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
     seg.setNeckExponent(0.0); // the largest-gap rule, which keeps every nearly free cut
-    // f as eq. (1) gives it: the mean that points drawn at random get by default
-    // (setIrregularSampling) leaves fewer nearly flat patches, and this is about eq. (9).
-    seg.setIrregularSampling(0.0);
     std::vector<pcl::PointIndices> segments;
     std::size_t chips[2], count[2];
     for (int flat = 0; flat < 2; ++flat) {
