@@ -171,7 +171,7 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
                              "for curvature; 0 when not measured) and whether the points were "
                              "projected onto their local planes; sampling_irregularity (the "
                              "irregular_sampling parameter: about 0.45 for points drawn at "
-                             "random, 0.05-0.15 for even ones; 0 when not measured) and whether "
+                             "random, 0.05-0.2 for even ones; 0 when not measured) and whether "
                              "the centrality was averaged for it (irregular).")
       .def_property_readonly("phase_times", &Segmenter::phaseTimes,
                              "Seconds per phase of the last segment() (knn, centrality, "
