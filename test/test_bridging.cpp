@@ -156,8 +156,7 @@ TEST(BridgeGap, SetterRejectsBadValues) {
 namespace {
 /// Bridges by brute force over all pairs, by the rule bridgeComponents() documents: per pair
 /// of components the shortest pair of points p < q no longer than the reach (gap times kNN
-/// radius, the longest edge) of the smaller index's point or of the other's, taken shortest
-/// first while it joins two groups.
+/// radius, the longest edge) of either point, taken shortest first while it joins two groups.
 std::set<std::pair<std::uint32_t, std::uint32_t>>
 bruteForceBridges(const CsrGraph& g, const std::vector<float>& xyz, double gap) {
   const std::size_t n = g.numVertices();
@@ -177,7 +176,7 @@ bruteForceBridges(const CsrGraph& g, const std::vector<float>& xyz, double gap) 
       const double dx = xyz[3 * p] - xyz[3 * q], dy = xyz[3 * p + 1] - xyz[3 * q + 1],
                    dz = xyz[3 * p + 2] - xyz[3 * q + 2];
       const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
-      if (!(d <= std::max(reach[p], reach[q])))
+      if (!(d <= std::min(reach[p], reach[q])))
         continue;
       const auto key = std::minmax(comp[p], comp[q]);
       const auto c = std::make_tuple(d, p, q);
@@ -240,5 +239,38 @@ TEST(BridgeComponents, MatchesAllPairsOnASheetWithSatellitesNearAndFar) {
           added.emplace(v, t);
       }
     EXPECT_EQ(added, bruteForceBridges(before, xyz, 3.0)) << seed;
+  }
+}
+
+namespace {
+/// A dense sheet (spacing 1) and a sparse one (spacing 5) `gap` units beside it, the sparse
+/// one's points numbered first or last.
+std::vector<float> denseAndSparseSheets(float gap, bool sparse_first) {
+  std::vector<float> dense, sparse;
+  for (int i = 0; i < 60; ++i) // wide enough that no search covers the whole grid
+    for (int j = 0; j < 60; ++j)
+      dense.insert(dense.end(), {static_cast<float>(i), static_cast<float>(j), 0.0f});
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      sparse.insert(sparse.end(), {59.0f + gap + 5.0f * i, 5.0f * j, 0.0f});
+  std::vector<float> xyz = sparse_first ? sparse : dense;
+  const std::vector<float>& rest = sparse_first ? dense : sparse;
+  xyz.insert(xyz.end(), rest.begin(), rest.end());
+  return xyz;
+}
+} // namespace
+
+TEST(BridgeComponents, AGapOnlyOneSideReachesAcrossStaysInEitherOrder) {
+  // The dense points reach 3 x 1.4 to 3 x 2.2, the sparse ones 3 x 11: a gap of 13 is within
+  // the sparse side's reach only, as a far surface seen at a grazing angle beside a near one
+  // that hides part of it. (Any gap within both reaches is within the sparse points' k
+  // nearest here: the sheets are one component then.)
+  for (const bool sparse_first : {false, true}) {
+    const std::vector<float> xyz = denseAndSparseSheets(13.0f, sparse_first);
+    CsrGraph g = knnGraph(xyz, 6);
+    ASSERT_EQ(components(g), 2u);
+    EXPECT_TRUE(bruteForceBridges(g, xyz, 3.0).empty());
+    EXPECT_EQ(bridgeComponents(g, xyz.data(), 3.0), 0u) << sparse_first;
+    EXPECT_EQ(components(g), 2u) << sparse_first;
   }
 }

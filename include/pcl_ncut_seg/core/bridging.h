@@ -15,8 +15,11 @@ namespace pcl_ncut_seg {
  * A surface sampled unevenly (long thin triangles, face centroids) can fall into several
  * components of the kNN graph; each would become its own segment at NCut 0. Two components
  * are joined by their shortest point pair (p, q) when |p - q| is at most `max_gap` times the
- * larger of the kNN radii of p and q (a point's distance to the farthest of its graph
- * neighbours): the gap is then of the order of the sampling spacing there. Candidate pairs are
+ * smaller of the kNN radii of p and q (a point's distance to the farthest of its graph
+ * neighbours): the gap is then of the order of the sampling spacing on both sides. (In a depth
+ * view, a far surface seen at a grazing angle is sampled sparsely; the larger radius would let
+ * it reach across the depth jump to a dense near surface that hides part of it.) The result
+ * does not depend on how the points are numbered. Candidate pairs are
  * taken shortest first and only join components not yet joined (Kruskal), so each bridge is
  * the shortest link between what it joins. Objects farther apart than that stay separate.
  *
