@@ -229,7 +229,7 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
     bridges.emplace_back(p, q);
     bridge_length.push_back(static_cast<float>(d));
     if (bridge_ratios)
-      bridge_ratios->push_back(d / std::max(radius[p], radius[q]));
+      bridge_ratios->push_back(d / std::min(radius[p], radius[q]));
   }
   if (bridges.empty())
     return 0;

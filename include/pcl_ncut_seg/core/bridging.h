@@ -27,8 +27,8 @@ namespace pcl_ncut_seg {
  *                       edges (rows stay sorted)
  * \param[in] xyz        3 floats per vertex
  * \param[in] max_gap    the largest bridge, in kNN radii, >= 0 (0: no bridge)
- * \param[out] bridge_ratios  if not null, each added bridge's length over the larger radius
- * \return the number of bridges added
+ * \param[out] bridge_ratios  if not null, each added bridge's length over the smaller radius (at
+ * most max_gap) \return the number of bridges added
  */
 std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
                              std::vector<double>* bridge_ratios = nullptr);
