@@ -364,3 +364,35 @@ TEST(EndToEnd, NonFinitePointsAreInNoSegment) {
 }
 
 } // namespace
+
+TEST(Components, AnObjectIsSegmentedAsItIsAloneWhateverLiesBesideIt) {
+  // A capsule spread evenly (length 1.5, radius 0.3), alone and with a sphere (radius 0.5,
+  // spread evenly as well) 2 units beside it, at three densities: the capsule's points must
+  // fall into the same segments either way, and it is one part. (With the weights' maxima
+  // taken over the whole cloud, the sphere's supernodes made the capsule's waist nearly free
+  // to cut: it came out in three pieces from 6,000 points on.)
+  constexpr double kPi = 3.14159265358979323846;
+  for (const double spacing : {0.042, 0.03, 0.021}) {
+    const LabeledShape capsule = pcl_ncut_seg::test::evenCapsule(1.5, 0.3, spacing);
+    const Segmentation alone = segment(capsule.cloud, 0);
+    Cloud::Ptr both(new Cloud(*capsule.cloud));
+    const auto sphere = static_cast<std::size_t>(4 * kPi * 0.25 / (spacing * spacing * 0.866));
+    const double golden = kPi * (3 - std::sqrt(5.0));
+    for (std::size_t i = 0; i < sphere; ++i) {
+      const double z = 1 - 2 * (i + 0.5) / sphere, r = std::sqrt(1 - z * z), a = golden * i;
+      both->push_back(pcl::PointXYZ(static_cast<float>(-2.5 + 0.5 * r * std::cos(a)),
+                                    static_cast<float>(0.5 * r * std::sin(a)),
+                                    static_cast<float>(0.5 * z)));
+    }
+    const Segmentation beside = segment(both, 0);
+    const std::vector<int> capsule_labels(beside.labels.begin(),
+                                          beside.labels.begin() + capsule.cloud->size());
+    report("segments_alone", alone.segments.size());
+    report("segments_beside_a_sphere", beside.segments.size());
+    EXPECT_EQ(alone.segments.size(), 1u) << "spacing " << spacing;
+    EXPECT_EQ(randIndex(capsule_labels, alone.labels), 1.0) << "spacing " << spacing;
+    std::set<int> capsule_segments(capsule_labels.begin(), capsule_labels.end());
+    for (std::size_t i = capsule.cloud->size(); i < both->size(); ++i)
+      EXPECT_EQ(capsule_segments.count(beside.labels[i]), 0u) << "spacing " << spacing;
+  }
+}

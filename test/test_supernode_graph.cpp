@@ -92,3 +92,55 @@ TEST(SupernodeGraph, AdjacentTreesWithoutSaddleAreJoinedAtTheirStrongestContact)
   EXPECT_GT(edgeWeight(g, 4, 5), 0);
   EXPECT_LT(edgeWeight(g, 3, 4), 0);
 }
+
+TEST(SupernodeGraph, EachComponentIsWeighedOnItsOwn) {
+  // threeSupernodes() as supernodes 0-2, and beside them (no kNN edge between) a second object
+  // of the same shape, higher, larger and better connected: supernodes 3-5. The maxima of
+  // eqs. (7) and (9) and the width's unit are per component, so 0-2 keep the weights they have
+  // alone, and 3-5 get the weights they would have alone.
+  Supernodes two = threeSupernodes();
+  two.label = {0, 1, 2, 3, 4, 5};
+  two.origin = {0, 1, 2, 3, 4, 5};
+  two.at_saddle = {false, false, true, false, false, true};
+  two.parent = {2, 2, kNone, 5, 5, kNone};
+  two.children = {{}, {}, {0, 1}, {}, {}, {3, 4}};
+  FeatureStats st = threeStats(), big = threeStats();
+  Connectivity conn = threeConn(), big_conn;
+  for (std::size_t i = 0; i < 3; ++i) {
+    big.height[i] *= 7;
+    big.area[i] *= 49;
+    big.width[i] *= 7;
+  }
+  for (const auto& [key, value] : threeConn())
+    big_conn[key] = 5.0 * value;
+  for (std::size_t i = 0; i < 3; ++i) {
+    st.height.push_back(big.height[i]);
+    st.area.push_back(big.area[i]);
+    st.width.push_back(big.width[i]);
+  }
+  for (const auto& [key, value] : big_conn)
+    conn[{key.first + 3, key.second + 3}] = value;
+  for (const Adjacency adjacency : {Adjacency::Saddles, Adjacency::All}) {
+    SimilarityParams p; // the width normalized by sqrt(total area): per component too
+    p.adjacency = adjacency;
+    const WeightedGraph both = buildSupernodeGraph(two, st, conn, p);
+    const WeightedGraph first =
+        buildSupernodeGraph(threeSupernodes(), threeStats(), threeConn(), p);
+    const WeightedGraph second = buildSupernodeGraph(threeSupernodes(), big, big_conn, p);
+    // r_i = i, m_i = l + i: l = 6 in both, 3 alone.
+    for (std::uint32_t a = 0; a < 3; ++a)
+      for (std::uint32_t b = a; b < 3; ++b) {
+        const auto inBoth = [](std::uint32_t v, std::uint32_t shift) {
+          return v < 3 ? v + shift : v + 3 + shift;
+        };
+        for (const auto& [alone, shift] : {std::make_pair(&first, 0u), {&second, 3u}}) {
+          for (const auto& [x, y] : {std::make_pair(a, b + 3), {a + 3, b + 3}}) {
+            const double w = edgeWeight(*alone, x, y);
+            EXPECT_NEAR(edgeWeight(both, inBoth(x, shift), inBoth(y, shift)), w,
+                        1e-12 * std::max(1.0, std::abs(w)))
+                << a << " " << b << " shift " << shift;
+          }
+        }
+      }
+  }
+}

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace pcl_ncut_seg {
@@ -91,25 +92,42 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   if (l == 0)
     return g;
 
-  double max_self = 0.0, max_pair = 0.0;
+  // Each connected component is a surface of its own, as for the centrality (Sec. 4.1): the
+  // maxima that normalize eqs. (7) and (9) and the width's unit are taken over its supernodes
+  // only, so that the weights within one object do not depend on what else the cloud holds.
+  // Supernodes of one component are joined by kNN edges, i.e. by pairs of conn.
+  std::vector<std::uint32_t> root(l);
+  std::iota(root.begin(), root.end(), 0u);
+  auto rootOf = [&root](std::uint32_t s) {
+    while (root[s] != s)
+      s = root[s] = root[root[s]];
+    return s;
+  };
+  for (const auto& [key, value] : conn)
+    if (key.first != key.second)
+      root[rootOf(key.first)] = rootOf(key.second);
+  for (std::uint32_t s = 0; s < l; ++s)
+    root[s] = rootOf(s);
+  std::vector<double> max_self(l, 0.0), max_pair(l, 0.0), total_area(l, 0.0);
   for (const auto& [key, value] : conn) {
-    double& max = key.first == key.second ? max_self : max_pair;
+    double& max = key.first == key.second ? max_self[root[key.first]] : max_pair[root[key.first]];
     max = std::max(max, value);
   }
-  double total_area = 0.0;
-  float min_h = stats.height[0], max_h = stats.height[0];
+  std::vector<float> min_h(l, std::numeric_limits<float>::infinity()),
+      max_h(l, -std::numeric_limits<float>::infinity());
   for (std::uint32_t s = 0; s < l; ++s) {
-    total_area += stats.area[s];
-    min_h = std::min(min_h, stats.height[s]);
-    max_h = std::max(max_h, stats.height[s]);
+    total_area[root[s]] += stats.area[s];
+    min_h[root[s]] = std::min(min_h[root[s]], stats.height[s]);
+    max_h[root[s]] = std::max(max_h[root[s]], stats.height[s]);
   }
   // Feature width is an area over a height, i.e. a length: measure it in units of
   // sqrt(total area) so the weights do not depend on the model's units.
-  const double width_unit =
-      params.normalize_width && total_area > 0.0 ? std::sqrt(total_area) : 1.0;
   std::vector<double> width(l);
-  for (std::uint32_t s = 0; s < l; ++s)
-    width[s] = std::max(static_cast<double>(stats.width[s]) / width_unit, 1e-300);
+  for (std::uint32_t s = 0; s < l; ++s) {
+    const double area = total_area[root[s]];
+    const double unit = params.normalize_width && area > 0.0 ? std::sqrt(area) : 1.0;
+    width[s] = std::max(static_cast<double>(stats.width[s]) / unit, 1e-300);
+  }
 
   // A supernode is flat when its feature height is small against its size: f_h < e sqrt(f_a)
   // (both lengths). Its width f_a / f_h (eq. 4) is then inflated by a near-zero height: on a
@@ -126,16 +144,18 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
 
   // eq. (7): r_i - m_i
   for (std::uint32_t i = 0; i < l; ++i) {
-    const double ratio = max_self > 0.0 ? lookup(conn, i, i) / max_self : 0.0;
+    const double self = max_self[root[i]];
+    const double ratio = self > 0.0 ? lookup(conn, i, i) / self : 0.0;
     const double w = std::exp(-(1.0 - ratio) / (params.beta * width[i]));
     g.edges.push_back({i, l + i, std::max(w, kMinWeight)});
   }
   // eq. (9): m_i - m_j
-  const double max_dh = static_cast<double>(max_h) - min_h;
   const double concavity_weight = params.concavity.value_or(0.0);
-  auto similarity = [&](std::uint32_t i, std::uint32_t j) {
+  auto similarity = [&](std::uint32_t i, std::uint32_t j) { // i and j are of one component
+    const std::uint32_t c = root[i];
+    const double max_dh = static_cast<double>(max_h[c]) - min_h[c], pair = max_pair[c];
     const double d1 = max_dh > 0.0 ? std::abs(stats.height[i] - stats.height[j]) / max_dh : 0.0;
-    const double d2 = max_pair > 0.0 ? 1.0 - lookup(conn, i, j) / max_pair : 1.0;
+    const double d2 = pair > 0.0 ? 1.0 - lookup(conn, i, j) / pair : 1.0;
     // Flat patches (an extension): between two supernodes that are both flat, their widths
     // say nothing about a part boundary, so the width ratio does not weaken their edge.
     const double width_ratio =

@@ -282,6 +282,38 @@ LabeledShape makeGappedBar(std::size_t n, std::uint64_t seed, double gap) {
   return out;
 }
 
+LabeledShape evenCapsule(double length, double radius, double spacing) {
+  LabeledShape out;
+  out.cloud.reset(new pcl::PointCloud<pcl::PointXYZ>);
+  out.num_parts = 1;
+  auto add = [&](double x, double y, double z) {
+    out.cloud->push_back(
+        pcl::PointXYZ(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)));
+    out.labels.push_back(0);
+  };
+  const int around = std::max(3, static_cast<int>(std::lround(2 * kPi * radius / spacing)));
+  const int along = std::max(1, static_cast<int>(std::lround(length / spacing)));
+  for (int i = 0; i <= along; ++i)
+    for (int j = 0; j < around; ++j) {
+      const double angle = 2 * kPi * (j + 0.5 * (i % 2)) / around;
+      add(length * i / along, radius * std::cos(angle), radius * std::sin(angle));
+    }
+  // A hexagonal packing covers spacing^2 sqrt(3) / 2 per point.
+  const int cap = static_cast<int>(
+      std::lround(2 * kPi * radius * radius / (spacing * spacing * std::sqrt(3.0) / 2)));
+  const double golden = kPi * (3 - std::sqrt(5.0));
+  for (int end = 0; end < 2; ++end)
+    for (int k = 0; k < cap; ++k) {
+      const double h = 1 - (k + 0.5) / cap; // uniform in height: uniform by area
+      if (h * radius < 0.5 * spacing)
+        continue; // the cylinder's last ring is there
+      const double s = std::sqrt(1 - h * h), angle = golden * k;
+      add(end ? length + radius * h : -radius * h, radius * s * std::cos(angle),
+          radius * s * std::sin(angle));
+    }
+  return out;
+}
+
 LabeledShape makeShape(const std::string& name, std::size_t n, std::uint64_t seed,
                        const SamplingOptions& options) {
   if (name == "hand")

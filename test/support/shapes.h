@@ -62,6 +62,12 @@ LabeledShape makeGappedBar(std::size_t n, std::uint64_t seed, double gap);
 LabeledShape makeShape(const std::string& name, std::size_t n, std::uint64_t seed,
                        const SamplingOptions& options = {});
 
+/** \brief A capsule spread evenly, not at random: its axis from (0, 0, 0) to (length, 0, 0),
+ * radius `radius`; rings of points `spacing` apart along the cylinder (each ring turned by half
+ * a step against the last) and a golden-angle spiral on each hemispherical cap, about `spacing`
+ * between neighbours everywhere. Deterministic; one part (label 0). */
+LabeledShape evenCapsule(double length, double radius, double spacing);
+
 /** \brief n points drawn uniformly in the cube [-1, 1]^3 (std::uniform_real_distribution of
  * std::mt19937_64(seed): the same on one standard library, unlike the shapes above). */
 pcl::PointCloud<pcl::PointXYZ>::Ptr randomCube(std::size_t n, std::uint64_t seed);
