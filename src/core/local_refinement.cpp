@@ -106,8 +106,11 @@ struct Refiner {
   const std::vector<float>& f;
   std::vector<double> point_area; ///< per point, pi r(p)^2
   Work w;
-  double small_area = 0.0;              ///< small: f_a below this (footnote 4)
-  float skinny_height = 0.0f;           ///< skinny: f_h below this (footnote 5)
+  /// Per connected component of the graph (each is a surface of its own): small is f_a below
+  /// small_area (footnote 4), skinny f_h below skinny_height (footnote 5).
+  std::vector<std::uint32_t> component;
+  std::vector<double> small_area;
+  std::vector<float> skinny_height;
   std::vector<std::uint32_t> by_f;      // merge-up: the points of s in descending f
   std::vector<std::uint64_t> sort_keys; // merge-up: by_f's sort keys
   std::vector<std::uint32_t> members;   // merge-up: the points of s
@@ -123,15 +126,20 @@ struct Refiner {
     for (std::size_t p = 0; p < n; ++p)
       point_area[p] = pointArea(radii[p]);
     copyInput(input);
-    // Thresholds from the supernodes before refinement (footnotes 4 and 5).
-    double total_area = 0.0;
-    float max_height = 0.0f;
+    // Thresholds from the supernodes before refinement (footnotes 4 and 5), per component.
+    const std::size_t num_components = connectedComponents(graph, component);
+    std::vector<double> total_area(num_components, 0.0);
+    skinny_height.assign(num_components, 0.0f);
     for (std::size_t s = 0; s < input.size(); ++s) {
-      total_area += w.area[s];
-      max_height = std::max(max_height, w.height(s));
+      const std::uint32_t c = component[input.origin[s]];
+      total_area[c] += w.area[s];
+      skinny_height[c] = std::max(skinny_height[c], w.height(static_cast<std::uint32_t>(s)));
     }
-    small_area = params.area_fraction * total_area;
-    skinny_height = params.height_fraction * max_height;
+    small_area.resize(num_components);
+    for (std::size_t c = 0; c < num_components; ++c) {
+      small_area[c] = params.area_fraction * total_area[c];
+      skinny_height[c] *= params.height_fraction;
+    }
     slot.assign(n, kNone);
   }
 
@@ -154,8 +162,8 @@ struct Refiner {
   }
 
   /// s is small (footnote 4) or skinny (footnote 5) by the thresholds before refinement.
-  bool small(std::uint32_t s) const { return w.area[s] < small_area; }
-  bool skinny(std::uint32_t s) const { return w.height(s) < skinny_height; }
+  bool small(std::uint32_t s) const { return w.area[s] < small_area[component[w.origin[s]]]; }
+  bool skinny(std::uint32_t s) const { return w.height(s) < skinny_height[component[w.origin[s]]]; }
 
   /// 1. Merge-up: every small supernode created at a saddle goes back to the supernodes that
   ///    terminate there. Returns whether any did.
@@ -402,8 +410,10 @@ struct Refiner {
       hi = std::max(hi, f[p]);
     }
     std::sort(points.begin(), points.end());
-    const std::uint32_t t =
-        (area < small_area || hi - lo < skinny_height) ? w.bestNeighbour(graph, points, s) : kNone;
+    const std::uint32_t c = component[points.front()];
+    const std::uint32_t t = (area < small_area[c] || hi - lo < skinny_height[c])
+                                ? w.bestNeighbour(graph, points, s)
+                                : kNone;
     if (t != kNone) { // t shares edges with the region: t stays connected if it was
       for (std::uint32_t p : points)
         w.addPoint(t, p, f, point_area[p]);
