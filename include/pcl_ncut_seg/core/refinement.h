@@ -49,10 +49,11 @@ FeatureStats featureStats(const Supernodes& supernodes, const std::vector<float>
  *  4. a small or skinny supernode with no saddle relation joins the point-wise neighbour it
  *     shares most kNN edges with.
  * Thresholds are taken from the supernodes before refinement, per connected component of the
- * graph (each is a surface of its own: 1% of its own area, of its own largest height). Output ids
- * are compact and numbered in order of the first point (by index) of each supernode. \param[in]
- * input supernodes as extractSupernodes() returns them, where one without children is connected in
- * graph (step 3 does not search those until they change).
+ * graph (each is a surface of its own: 1% of its own area, of its own largest height). Output
+ * ids are compact and numbered in order of the first point (by index) of each supernode.
+ *
+ * \param[in] input supernodes as extractSupernodes() returns them, where one without children
+ *            is connected in graph (step 3 does not search those until they change).
  */
 Supernodes refineSupernodes(const CsrGraph& graph, const std::vector<float>& f,
                             const std::vector<float>& radii, const Supernodes& input,
