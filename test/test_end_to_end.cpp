@@ -365,6 +365,23 @@ TEST(EndToEnd, NonFinitePointsAreInNoSegment) {
 
 } // namespace
 
+namespace {
+/// `cloud` with n points of a sphere (centre (x, 0, 0), radius r) appended, spread evenly on a
+/// Fibonacci lattice.
+Cloud::Ptr withEvenSphere(const Cloud& cloud, std::size_t n, double x, double r) {
+  constexpr double kPi = 3.14159265358979323846;
+  Cloud::Ptr out(new Cloud(cloud));
+  const double golden = kPi * (3 - std::sqrt(5.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = 1 - 2 * (i + 0.5) / n, s = std::sqrt(1 - z * z), a = golden * i;
+    out->push_back(pcl::PointXYZ(static_cast<float>(x + r * s * std::cos(a)),
+                                 static_cast<float>(r * s * std::sin(a)),
+                                 static_cast<float>(r * z)));
+  }
+  return out;
+}
+} // namespace
+
 TEST(Components, AnObjectIsSegmentedAsItIsAloneWhateverLiesBesideIt) {
   // A capsule spread evenly (length 1.5, radius 0.3), alone and with a sphere (radius 0.5,
   // spread evenly as well) 2 units beside it, at three densities: the capsule's points must
@@ -375,15 +392,9 @@ TEST(Components, AnObjectIsSegmentedAsItIsAloneWhateverLiesBesideIt) {
   for (const double spacing : {0.042, 0.03, 0.021}) {
     const LabeledShape capsule = pcl_ncut_seg::test::evenCapsule(1.5, 0.3, spacing);
     const Segmentation alone = segment(capsule.cloud, 0);
-    Cloud::Ptr both(new Cloud(*capsule.cloud));
-    const auto sphere = static_cast<std::size_t>(4 * kPi * 0.25 / (spacing * spacing * 0.866));
-    const double golden = kPi * (3 - std::sqrt(5.0));
-    for (std::size_t i = 0; i < sphere; ++i) {
-      const double z = 1 - 2 * (i + 0.5) / sphere, r = std::sqrt(1 - z * z), a = golden * i;
-      both->push_back(pcl::PointXYZ(static_cast<float>(-2.5 + 0.5 * r * std::cos(a)),
-                                    static_cast<float>(0.5 * r * std::sin(a)),
-                                    static_cast<float>(0.5 * z)));
-    }
+    // As densely as the capsule: a hexagonal packing covers spacing^2 sqrt(3) / 2 per point.
+    const auto sphere = static_cast<std::size_t>(kPi / (spacing * spacing * 0.866));
+    const Cloud::Ptr both = withEvenSphere(*capsule.cloud, sphere, -2.5, 0.5);
     const Segmentation beside = segment(both, 0);
     const std::vector<int> capsule_labels(beside.labels.begin(),
                                           beside.labels.begin() + capsule.cloud->size());
@@ -402,18 +413,9 @@ TEST(Components, AHandBesideALargeSphereKeepsItsFingers) {
   // (8,000 points spread evenly): the refinement's small and skinny supernodes (Sec. 4.3,
   // footnotes 4 and 5) are measured against the hand's own area and heights, so the hand
   // keeps its parts. (Against the whole cloud's, every finger was small.)
-  constexpr double kPi = 3.14159265358979323846;
   const LabeledShape hand = pcl_ncut_seg::test::makeHand(4000, 1);
   const Segmentation alone = segment(hand.cloud, 0);
-  Cloud::Ptr both(new Cloud(*hand.cloud));
-  const std::size_t sphere = 8000;
-  const double golden = kPi * (3 - std::sqrt(5.0));
-  for (std::size_t i = 0; i < sphere; ++i) {
-    const double z = 1 - 2 * (i + 0.5) / sphere, r = std::sqrt(1 - z * z), a = golden * i;
-    both->push_back(pcl::PointXYZ(static_cast<float>(100 + 22 * r * std::cos(a)),
-                                  static_cast<float>(22 * r * std::sin(a)),
-                                  static_cast<float>(22 * z)));
-  }
+  const Cloud::Ptr both = withEvenSphere(*hand.cloud, 8000, 100.0, 22.0);
   const Segmentation beside = segment(both, 0);
   const std::vector<int> hand_labels(beside.labels.begin(),
                                      beside.labels.begin() + hand.cloud->size());
