@@ -199,7 +199,7 @@ TEST(Denoise, OnAWholeSurfaceDrawnAtRandomTheCentralityIsTakenThroughTheMeanOnce
   Parameters params;
   params.centrality.starts = 1;
   params.graph.max_points.reset();
-  params.graph.irregular_sampling = 0.3; // off by default
+  ASSERT_EQ(params.graph.irregular_sampling, 0.3); // the default
   const std::vector<float> random = test::xyzOf(*test::makeHand(4000, 7).cloud);
   const CentralityPair a = centralityBeforeAndAfter(random, params);
   ASSERT_FALSE(a.projected); // clean: not projected, but averaged
@@ -261,12 +261,13 @@ TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
   EXPECT_EQ(seg.getNoiseTest().residual_growth, 0.0);
   EXPECT_FALSE(seg.getNoiseTest().projected);
 
-  // Off by default: not measured. On, the hand's points are drawn at random.
-  EXPECT_EQ(seg.getNoiseTest().sampling_irregularity, 0.0);
-  seg.setIrregularSampling(0.3);
-  seg.extract(segments);
+  // On by default (0.3): the hand's points are drawn at random.
   EXPECT_GT(seg.getNoiseTest().sampling_irregularity, 0.3);
   EXPECT_TRUE(seg.getNoiseTest().irregular);
+  seg.setIrregularSampling(0.6); // measured, but below this bound
+  seg.extract(segments);
+  EXPECT_GT(seg.getNoiseTest().sampling_irregularity, 0.3);
+  EXPECT_FALSE(seg.getNoiseTest().irregular);
   seg.setIrregularSampling(0.0); // off: not measured
   seg.extract(segments);
   EXPECT_EQ(seg.getNoiseTest().sampling_irregularity, 0.0);
@@ -280,7 +281,7 @@ TEST(Denoise, SetterRejectsBadValues) {
     seg.setDenoise(bad);
     EXPECT_EQ(seg.getDenoise(), 1.5);
   }
-  EXPECT_EQ(seg.getIrregularSampling(), 0.0); // off by default
+  EXPECT_EQ(seg.getIrregularSampling(), 0.3); // the default
   seg.setIrregularSampling(0.25);
   for (double bad : {-0.1, std::nan("")}) {
     seg.setIrregularSampling(bad);

@@ -70,11 +70,11 @@ struct GraphParams {
   /// below this bound (noise, not curvature, scatters them), each point is projected onto the
   /// plane of its 2-ring before anything is measured; nullopt: never. Not in CAD mode.
   std::optional<double> denoise = 2.0;
-  /// Extension (core/denoise.h), off by default: when the sampling irregularity of the points is
+  /// Extension (core/denoise.h): when the sampling irregularity of the points is
   /// at least this (0.3: points drawn at random, not spread evenly), the centrality of a whole
   /// surface is averaged over each point's neighbourhood once, as on a noisy one. nullopt:
   /// never (the paper). Not in CAD mode.
-  std::optional<double> irregular_sampling;
+  std::optional<double> irregular_sampling = 0.3;
   /// Extension (core/subsample.h): a denser cloud is analysed on an even subset of at most this
   /// many of its points (one per cube of a grid), and every other point takes the segment of its
   /// nearest analysed point. Off: every point.

@@ -201,8 +201,8 @@ public:
   /** \brief Irregular sampling (core/denoise.h): when the points' spacings vary at least this
    * much (samplingIrregularity(): about 0.45 for points drawn at random, 0.05-0.2 for points
    * spread evenly; 0.3 between them), the centrality of a whole surface is averaged over each
-   * point's neighbourhood once, as on a noisy one. Off by default (docs/sampling.md).
-   * \param[in] variation  graph.irregular_sampling, > 0; 0: off (the default) */
+   * point's neighbourhood once, as on a noisy one. 0.3 by default (docs/sampling.md).
+   * \param[in] variation  graph.irregular_sampling, > 0 (default 0.3); 0: off (the paper) */
   void setIrregularSampling(double variation);
   double getIrregularSampling() const { return params_.graph.irregular_sampling.value_or(0.0); }
   /** \brief The analysis' resolution (core/subsample.h): a cloud of more distinct points is

@@ -9,7 +9,7 @@ TABLE = pcl_ncut_seg.parameter_table()
 
 # Per parameter, a valid value other than its default (every row must have one).
 OTHER = {
-    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": 0.3, "max_points": 1000, "centrality_samples": 30, "centrality": "exact",
+    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "centrality_samples": 30, "centrality": "exact",
     "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
     "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
@@ -158,12 +158,14 @@ def test_the_noise_test_is_reported(points):
     off.segment(points)
     assert off.noise_test == {"residual_growth": 0.0, "projected": False,
                               "sampling_irregularity": 0.0, "irregular": False}
-    # The points are drawn at random: irregular, averaged once when the test is on.
-    assert clean.noise_test["sampling_irregularity"] == 0.0  # off by default
-    drawn = pcl_ncut_seg.Segmenter(irregular_sampling=0.3)
-    drawn.segment(points)
-    assert drawn.noise_test["sampling_irregularity"] > 0.3
-    assert drawn.noise_test["irregular"] is True
+    # The points are drawn at random: irregular, so the centrality was averaged once (the
+    # test is on by default, at 0.3); with a bound above their irregularity, they count as even.
+    assert clean.noise_test["sampling_irregularity"] > 0.3
+    assert clean.noise_test["irregular"] is True
+    lenient = pcl_ncut_seg.Segmenter(irregular_sampling=0.6)
+    lenient.segment(points)
+    assert lenient.noise_test["sampling_irregularity"] == clean.noise_test["sampling_irregularity"]
+    assert lenient.noise_test["irregular"] is False
 
 
 def disc_view(noise=0.0005, seed=7):

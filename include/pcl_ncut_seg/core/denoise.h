@@ -35,8 +35,8 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
  *
  * Drawn at random, neighbouring points are closer or farther apart than the surface makes
  * them, the geodesics of eq. (1) zig-zag through the clumps and gaps as through noise, and f
- * has shallow maxima that belong to the draw. When graph.irregular_sampling is set (off by
- * default; 0.3 lies between even, at most about 0.2, and random), a whole surface whose
+ * has shallow maxima that belong to the draw. When graph.irregular_sampling is set (by
+ * default 0.3, between even, at most about 0.2, and random), a whole surface whose
  * irregularity is at least the bound has f taken through neighbourhoodMean() once, as a noisy
  * one. On evenly spread points the shallow maxima belong to the surface, and the mean would
  * blur them.
