@@ -31,13 +31,8 @@ std::vector<float> sphere(std::size_t n, double sigma, std::uint64_t seed = 1) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, sigma);
   std::vector<float> xyz;
-  const double golden = kPi * (3.0 - std::sqrt(5.0));
-  for (std::size_t i = 0; i < n; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), a = golden * i;
-    xyz.push_back(static_cast<float>(r * std::cos(a) + (sigma > 0 ? noise(rng) : 0.0)));
-    xyz.push_back(static_cast<float>(r * std::sin(a) + (sigma > 0 ? noise(rng) : 0.0)));
-    xyz.push_back(static_cast<float>(z + (sigma > 0 ? noise(rng) : 0.0)));
-  }
+  for (const double c : test::fibonacciSphere(n))
+    xyz.push_back(static_cast<float>(c + (sigma > 0 ? noise(rng) : 0.0)));
   return xyz;
 }
 

@@ -385,15 +385,12 @@ namespace {
 /// `cloud` with n points of a sphere (centre (x, 0, 0), radius r) appended, spread evenly on a
 /// Fibonacci lattice.
 Cloud::Ptr withEvenSphere(const Cloud& cloud, std::size_t n, double x, double r) {
-  constexpr double kPi = 3.14159265358979323846;
   Cloud::Ptr out(new Cloud(cloud));
-  const double golden = kPi * (3 - std::sqrt(5.0));
-  for (std::size_t i = 0; i < n; ++i) {
-    const double z = 1 - 2 * (i + 0.5) / n, s = std::sqrt(1 - z * z), a = golden * i;
-    out->push_back(pcl::PointXYZ(static_cast<float>(x + r * s * std::cos(a)),
-                                 static_cast<float>(r * s * std::sin(a)),
-                                 static_cast<float>(r * z)));
-  }
+  const std::vector<double> unit = pcl_ncut_seg::test::fibonacciSphere(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out->push_back(pcl::PointXYZ(static_cast<float>(x + r * unit[3 * i]),
+                                 static_cast<float>(r * unit[3 * i + 1]),
+                                 static_cast<float>(r * unit[3 * i + 2])));
   return out;
 }
 } // namespace

@@ -8,6 +8,8 @@
 #include <pcl_ncut_seg/core/single_view.h>
 #include <pcl_ncut_seg/core/stopwatch.h>
 
+#include "support/shapes.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +21,6 @@ using namespace pcl_ncut_seg;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const float kOrigin[3] = {0.0f, 0.0f, 0.0f};
 
 CsrGraph knnGraph(const std::vector<float>& xyz, std::size_t k = 10) {
@@ -53,14 +54,10 @@ std::vector<float> grid(int cols, std::uint32_t seed, double spacing = 0.01) {
 
 /// n points of the sphere of the given centre and radius on a Fibonacci lattice.
 std::vector<float> sphere(std::size_t n, const double centre[3], double radius) {
-  std::vector<float> xyz;
-  const double golden = kPi * (3.0 - std::sqrt(5.0));
-  for (std::size_t i = 0; i < n; ++i) {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), a = golden * i;
-    xyz.insert(xyz.end(),
-               {float(centre[0] + radius * r * std::cos(a)),
-                float(centre[1] + radius * r * std::sin(a)), float(centre[2] + radius * z)});
-  }
+  const std::vector<double> unit = pcl_ncut_seg::test::fibonacciSphere(n);
+  std::vector<float> xyz(unit.size());
+  for (std::size_t i = 0; i < unit.size(); ++i)
+    xyz[i] = static_cast<float>(centre[i % 3] + radius * unit[i]);
   return xyz;
 }
 

@@ -282,6 +282,17 @@ LabeledShape makeGappedBar(std::size_t n, std::uint64_t seed, double gap) {
   return out;
 }
 
+std::vector<double> fibonacciSphere(std::size_t n) {
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  std::vector<double> xyz;
+  xyz.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), a = golden * i;
+    xyz.insert(xyz.end(), {r * std::cos(a), r * std::sin(a), z});
+  }
+  return xyz;
+}
+
 LabeledShape evenCapsule(double length, double radius, double spacing) {
   LabeledShape out;
   out.cloud.reset(new pcl::PointCloud<pcl::PointXYZ>);

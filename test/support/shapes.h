@@ -68,6 +68,10 @@ LabeledShape makeShape(const std::string& name, std::size_t n, std::uint64_t see
  * between neighbours everywhere. Deterministic; one part (label 0). */
 LabeledShape evenCapsule(double length, double radius, double spacing);
 
+/** \brief n points of the unit sphere spread evenly on a Fibonacci lattice (the golden-angle
+ * spiral; neighbours about sqrt(4 pi / n) apart), x, y, z in turn. */
+std::vector<double> fibonacciSphere(std::size_t n);
+
 /** \brief n points drawn uniformly in the cube [-1, 1]^3 (std::uniform_real_distribution of
  * std::mt19937_64(seed): the same on one standard library, unlike the shapes above). */
 pcl::PointCloud<pcl::PointXYZ>::Ptr randomCube(std::size_t n, std::uint64_t seed);
