@@ -15,6 +15,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <random>
 
 using namespace pcl_ncut_seg;
 
@@ -54,6 +55,67 @@ TEST(Concavity, NormalsOfAClosedSurfacePointOutwards) {
   }
   ASSERT_GT(checked, 500u);
   EXPECT_EQ(outwards, checked);
+}
+
+TEST(Concavity, NormalsPointOutwardsWhenTheFarthestPointIsAThinFinsTip) {
+  // A ball of radius 1 with a thin fin, two triangular sheets 0.004 apart (a sixteenth of the
+  // point spacing) reaching to x = 2.2: a fish's fin. At the fin's tip, the point farthest from
+  // the centroid, the fitted plane holds both sheets, so its normal is nearly tangent to the
+  // direction from the centroid and cannot tell outwards from inwards. The ball's normals must
+  // point outwards in every draw of the fin's points.
+  const std::vector<double> ball = test::fibonacciSphere(3000);
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    std::vector<float> xyz(ball.begin(), ball.end());
+    const std::size_t on_ball = xyz.size() / 3;
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int i = 0; i < 600; ++i) {
+      const double x = 0.95 + 1.25 * unit(rng);
+      const double y = (2.0 * unit(rng) - 1.0) * 0.3 * (2.2 - x) / 1.25;
+      const double z = i % 2 ? 0.002 : -0.002;
+      for (double v : {x, y, z})
+        xyz.push_back(static_cast<float>(v));
+    }
+    const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+    const std::vector<float> normals = orientedNormals(graph, xyz.data());
+    std::size_t checked = 0, outwards = 0;
+    for (std::size_t p = 0; p < on_ball; ++p) {
+      if (xyz[3 * p] > 0.5)
+        continue; // away from the fin's root
+      ++checked;
+      const double along = normals[3 * p] * xyz[3 * p] + normals[3 * p + 1] * xyz[3 * p + 1] +
+                           normals[3 * p + 2] * xyz[3 * p + 2];
+      outwards += along > 0.8;
+    }
+    ASSERT_GT(checked, 2000u);
+    EXPECT_EQ(outwards, checked) << "seed " << seed;
+  }
+}
+
+TEST(Concavity, NormalsOfOneViewFaceTheSensor) {
+  // A bowl seen from above its opening: the inside of the lower half of the unit sphere, as a
+  // camera at (0, 0, 3) sees it. The solid's outside there faces the sphere's centre, and the
+  // camera. Whole-surface rules get it wrong: the rim point farthest from the points'
+  // centroid has a normal pointing back towards it.
+  const std::vector<double> sphere = test::fibonacciSphere(4000);
+  std::vector<float> xyz;
+  for (std::size_t i = 0; i + 2 < sphere.size(); i += 3)
+    if (sphere[i + 2] < 0.0)
+      for (int d = 0; d < 3; ++d)
+        xyz.push_back(static_cast<float>(sphere[i + d]));
+  const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+  const float camera[3] = {0.0f, 0.0f, 3.0f};
+  const std::vector<float> normals = orientedNormals(graph, xyz.data(), 1, camera);
+  std::size_t facing = 0;
+  const std::size_t n = xyz.size() / 3;
+  for (std::size_t p = 0; p < n; ++p) // towards the centre: -p
+    facing += -(normals[3 * p] * xyz[3 * p] + normals[3 * p + 1] * xyz[3 * p + 1] +
+                normals[3 * p + 2] * xyz[3 * p + 2]) > 0.8;
+  ASSERT_GT(n, 1900u);
+  EXPECT_EQ(facing, n);
+  // Without the sensor the bowl is taken for a whole surface and turned the other way.
+  const std::vector<float> whole = orientedNormals(graph, xyz.data(), 1);
+  EXPECT_GT(whole[0] * xyz[0] + whole[1] * xyz[1] + whole[2] * xyz[2], 0.0f);
 }
 
 TEST(Concavity, NormalsDoNotDependOnTheNumberOfThreads) {

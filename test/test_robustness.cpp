@@ -141,6 +141,10 @@ TEST(Robustness, OrganizedCloudWithNanHoles) {
       }
     }
   organized->is_dense = false;
+  // The sensor looks down on the surface, as a depth camera would (one view's normals face
+  // it); the dense cloud is seen from the same place.
+  organized->sensor_origin_ = Eigen::Vector4f(2.0f, 1.5f, 3.0f, 0.0f);
+  dense->sensor_origin_ = organized->sensor_origin_;
   ASSERT_TRUE(organized->isOrganized());
 
   Seg seg;

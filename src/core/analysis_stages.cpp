@@ -106,9 +106,10 @@ Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& 
   return a;
 }
 
-SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
+SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads,
+                          const float* viewpoint) {
   SurfaceBends b;
-  b.normals = orientedNormals(graph, xyz, num_threads);
+  b.normals = orientedNormals(graph, xyz, num_threads, viewpoint);
   b.typical_bend = meanAbsBend(graph, xyz, b.normals, num_threads);
   return b;
 }

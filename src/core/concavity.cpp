@@ -120,7 +120,8 @@ private:
 
 } // namespace
 
-std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
+std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsigned num_threads,
+                                   const float* viewpoint) {
   const std::size_t n = graph.numVertices();
   std::vector<float> normals(3 * n, 0.0f);
   // The plane fits are independent: the same result for any number of threads.
@@ -131,7 +132,7 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
 
   // Orientation: Prim's tree over 1 - |n_p . n_q|, grown over each component from its first
   // vertex. The tree does not depend on where it starts (up to ties), so the component is then
-  // turned as a whole so that the seed's normal points away from the centroid.
+  // turned as a whole (below).
   auto dot = [&](std::size_t a, std::size_t b) {
     return normals[3 * a] * normals[3 * b] + normals[3 * a + 1] * normals[3 * b + 1] +
            normals[3 * a + 2] * normals[3 * b + 2];
@@ -185,27 +186,47 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
   const std::size_t num_comps = centroid.size();
   for (std::size_t c = 0; c < num_comps; ++c)
     centroid[c] /= static_cast<double>(size[c]);
-  // The seed: the point with a normal farthest from its component's centroid.
-  std::vector<std::int64_t> seed(num_comps, -1);
-  std::vector<double> far(num_comps, -1.0);
+  // Each component is turned so that its normals point outwards, by the more decisive of two
+  // tests. (a) At the point farthest from the centroid a smooth closed surface touches the
+  // sphere through it, so its normal is parallel to p - c: the cosine tells the side, and how
+  // well the fitted plane is the tangent plane there (near 0 at the tip of a thin fin, whose
+  // plane holds both sides). (b) Over a closed surface the sum of n . (p - c) is 3 times the
+  // enclosed volume for outward normals (the divergence theorem; the points stand for equal
+  // areas), so its sign tells the side, and its ratio to the sum of |n . (p - c)| how
+  // consistently the points agree (low where thin parts took the wrong side).
+  std::vector<double> flux(num_comps, 0.0), spread(num_comps, 0.0), far(num_comps, -1.0);
+  std::vector<double> seed_cos(num_comps, 0.0), facing(num_comps, 0.0);
   for (std::size_t v = 0; v < n; ++v) {
     const std::uint32_t c = parent[v];
-    const double d = (point(v) - centroid[c]).norm();
+    if (viewpoint) {
+      const Eigen::Vector3d to_sensor =
+          Eigen::Vector3d(viewpoint[0], viewpoint[1], viewpoint[2]) - point(v);
+      const double d = to_sensor.norm();
+      if (d > 0.0)
+        facing[c] += (normals[3 * v] * to_sensor[0] + normals[3 * v + 1] * to_sensor[1] +
+                      normals[3 * v + 2] * to_sensor[2]) /
+                     d;
+    }
+    const Eigen::Vector3d out = point(v) - centroid[c];
+    const double along =
+        normals[3 * v] * out[0] + normals[3 * v + 1] * out[1] + normals[3 * v + 2] * out[2];
+    flux[c] += along;
+    spread[c] += std::abs(along);
+    const double d = out.norm();
     const bool has_normal =
         normals[3 * v] != 0.0f || normals[3 * v + 1] != 0.0f || normals[3 * v + 2] != 0.0f;
     if (has_normal && d > far[c]) {
       far[c] = d;
-      seed[c] = static_cast<std::int64_t>(v);
+      seed_cos[c] = d > 0.0 ? along / d : 0.0;
     }
   }
   std::vector<char> turn(num_comps, 0);
-  for (std::size_t c = 0; c < num_comps; ++c)
-    if (seed[c] >= 0) {
-      const auto s = static_cast<std::size_t>(seed[c]);
-      const Eigen::Vector3d out = point(s) - centroid[c];
-      turn[c] =
-          normals[3 * s] * out[0] + normals[3 * s + 1] * out[1] + normals[3 * s + 2] * out[2] < 0.0;
-    }
+  for (std::size_t c = 0; c < num_comps; ++c) {
+    const double consistency = spread[c] > 0.0 ? flux[c] / spread[c] : 0.0;
+    turn[c] = viewpoint ? facing[c] < 0.0
+                        : (std::abs(seed_cos[c]) >= std::abs(consistency) ? seed_cos[c]
+                                                                          : consistency) < 0.0;
+  }
   for (std::size_t v = 0; v < n; ++v)
     if (turn[parent[v]])
       for (int d = 0; d < 3; ++d)

@@ -66,11 +66,12 @@ DistinctStarts distinctStarts(const std::vector<Centrality>& f) {
 /// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
 /// supernodes, once per start of eq. (1)'s sampling with its own samples (core/starts.h); the
 /// bends are measured once. average: the graph stage found the points noisy (and projected
-/// them) or drawn at random (core/denoise.h).
+/// them) or drawn at random (core/denoise.h). viewpoint: one view's sensor (null: unknown or a
+/// whole surface), which the normals face.
 Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
-                         const PhaseProgressFn& progress, bool average) {
+                         const PhaseProgressFn& progress, bool average, const float* viewpoint) {
   // A noisy whole surface, or one drawn at random, has its centrality averaged over
   // neighbourhoods (core/denoise.h), a view not: a depth sensor's noise runs along its rays,
   // mostly along the normals that the projection takes it out along (docs/sampling.md).
@@ -109,7 +110,7 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
     // Measured between the supernodes, like eq. (8): their time counts as refinement time.
     Stopwatch clock;
     const SurfaceBends bends =
-        surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads);
+        surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint);
     for (Analysis& one : each) {
       if (creases)
         creaseStage(one, xyz.data(), bends, params);
@@ -176,8 +177,10 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     times.knn += clock.lap();
     a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank.data(), times, progress);
   } else {
+    const float* viewpoint =
+        points.sensor_origin && !points.rim.empty() ? points.sensor_origin->data() : nullptr;
     a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank.data(),
-                        times, progress, noise.projected || noise.irregular);
+                        times, progress, noise.projected || noise.irregular, viewpoint);
   }
   a.order = std::move(points.order);
   a.noise = noise;

@@ -51,7 +51,8 @@ struct SurfaceBends {
   std::vector<float> normals; ///< 3 floats per vertex, oriented consistently
   double typical_bend = 0.0;  ///< meanAbsBend()
 };
-SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads);
+SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads,
+                          const float* viewpoint = nullptr);
 
 /** \brief Crease stage (extension): split refined supernodes along concave creases
  * (refinement.crease_split, .crease_cut; core/crease_split.h), then measure their features

@@ -14,15 +14,22 @@ namespace pcl_ncut_seg {
 
 /** \brief Unit normals fitted (least squares plane) to each point and its graph neighbours,
  * oriented consistently by propagation along a minimum spanning tree of the kNN graph
- * (weights 1 - |n_p . n_q|, Hoppe et al. 1992), in each component so that the normal of the
- * point farthest from the component's centroid points away from the centroid. A point without
- * a plane (fewer than 3 neighbours, collinear) gets a zero normal. The tree is Prim's with the
- * weights rounded down to multiples of 1/1024, which keeps it O(n + m).
+ * (weights 1 - |n_p . n_q|, Hoppe et al. 1992), each component turned outwards by the more
+ * decisive of two tests: the normal of the point farthest from the centroid (parallel to
+ * p - centroid on a smooth closed surface; its cosine), and the sum of n . (p - centroid)
+ * over the points (3 times the volume for outward normals, the divergence theorem; its ratio
+ * to the sum of |n . (p - centroid)|). A point without a plane (fewer than 3 neighbours,
+ * collinear) gets a zero normal. The tree is Prim's with the weights rounded down to
+ * multiples of 1/1024, which keeps it O(n + m). For one view of a surface, give the sensor's
+ * position: a camera sees a solid from outside, so each component is turned to face it on the
+ * whole (the sum of n . (s - p) / |s - p| is positive) instead.
  * \param[in] xyz          3 floats per vertex
  * \param[in] num_threads  threads for the plane fits (0 = all cores); the result does not
- *                         depend on it */
+ *                         depend on it
+ * \param[in] viewpoint    3 floats, the sensor's position in xyz's coordinates; null: a
+ *                         whole surface */
 std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz,
-                                   unsigned num_threads = 0);
+                                   unsigned num_threads = 0, const float* viewpoint = nullptr);
 
 /** \brief Signed bend of the kNN edge (p, q) of the given length: (n_p - n_q) . (p - q) /
  * |p - q|, about the angle between the normals; > 0 where the surface folds outwards

@@ -59,7 +59,8 @@ struct PointSet {
   /// surface without a known rim.
   std::vector<std::uint8_t> rim;
   /// Where the sensor stood, in the coordinates of xyz; when there is no rim, a cloud that is
-  /// one view from there gets its rim (core/single_view.h). Empty: unknown.
+  /// one view from there gets its rim (core/single_view.h); a view's normals face it
+  /// (orientedNormals(), core/concavity.h). Empty: unknown.
   std::optional<std::array<float, 3>> sensor_origin;
 };
 
