@@ -85,12 +85,28 @@ private:
   std::uint32_t tick_ = 0;
 };
 
+/// Vertex p projected onto the plane through centroid with unit normal: 3 floats to out.
+void projectOnto(const float* xyz, std::uint32_t p, const Eigen::Vector3d& centroid,
+                 const Eigen::Vector3d& normal, float* out) {
+  const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+  const Eigen::Vector3d y = x - (x - centroid).dot(normal) * normal;
+  for (int d = 0; d < 3; ++d)
+    out[d] = static_cast<float>(y[d]);
+}
+
+/// residualGrowth() fits every kStride-th vertex.
+constexpr std::size_t kStride = 4;
+
 } // namespace
 
-double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
-  constexpr std::size_t kStride = 4;
+double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads,
+                      RingFits* fits) {
   const std::size_t m = (graph.numVertices() + kStride - 1) / kStride;
   std::vector<double> rms1(m, 0.0), rms2(m, 0.0);
+  if (fits) {
+    fits->state.assign(m, 0);
+    fits->projected.assign(3 * m, 0.0f);
+  }
   const auto sm = static_cast<std::int64_t>(m);
 #pragma omp parallel num_threads(usableThreads(num_threads))
   {
@@ -99,11 +115,19 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
     double r1 = 0.0, r2 = 0.0;
 #pragma omp for schedule(static, 256)
     for (std::int64_t i = 0; i < sm; ++i) {
-      rings.collect(graph, static_cast<std::uint32_t>(i * kStride));
-      if (fitPlane(xyz, rings.ring1(), centroid, normal, r1) &&
-          fitPlane(xyz, rings.ring2(), centroid, normal, r2)) {
+      const auto p = static_cast<std::uint32_t>(i * kStride);
+      rings.collect(graph, p);
+      if (!fitPlane(xyz, rings.ring1(), centroid, normal, r1))
+        continue;
+      const bool plane = fitPlane(xyz, rings.ring2(), centroid, normal, r2);
+      if (plane) {
         rms1[i] = r1;
         rms2[i] = r2;
+      }
+      if (fits) {
+        fits->state[i] = plane ? 1 : 2;
+        if (plane)
+          projectOnto(xyz, p, centroid, normal, &fits->projected[3 * i]);
       }
     }
   }
@@ -141,7 +165,7 @@ double samplingIrregularity(const CsrGraph& graph) {
 }
 
 std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
-                                          unsigned num_threads) {
+                                          unsigned num_threads, const RingFits* fits) {
   const std::size_t n = graph.numVertices();
   std::vector<float> out(xyz, xyz + 3 * n);
   const auto sn = static_cast<std::int64_t>(n);
@@ -153,13 +177,14 @@ std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xy
 #pragma omp for schedule(static, 1024)
     for (std::int64_t sp = 0; sp < sn; ++sp) {
       const auto p = static_cast<std::uint32_t>(sp);
-      rings.collect(graph, p);
-      if (!fitPlane(xyz, rings.ring2(), centroid, normal, rms))
+      if (fits && p % kStride == 0 && fits->state[p / kStride] != 0) { // fitted already
+        if (fits->state[p / kStride] == 1)
+          std::copy_n(&fits->projected[3 * (p / kStride)], 3, &out[3 * p]);
         continue;
-      const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
-      const Eigen::Vector3d y = x - (x - centroid).dot(normal) * normal;
-      for (int d = 0; d < 3; ++d)
-        out[3 * p + d] = static_cast<float>(y[d]);
+      }
+      rings.collect(graph, p);
+      if (fitPlane(xyz, rings.ring2(), centroid, normal, rms))
+        projectOnto(xyz, p, centroid, normal, &out[3 * p]);
     }
   }
   return out;
