@@ -89,6 +89,27 @@ TEST(Denoise, AnExactlyFlatGridHasNoScatterAndStays) {
     EXPECT_NEAR(projected[i], xyz[i], 1e-5f);
 }
 
+TEST(Denoise, TheResidualTestsFitsProjectAsTheProjectionsOwn) {
+  // A noisy sphere and an exactly flat grid (whose 2-rings have no scatter), with a few
+  // collinear points whose rings have no plane.
+  std::vector<float> grid;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      grid.insert(grid.end(), {0.1f * i, 0.1f * j, 0.5f});
+  for (int i = 0; i < 12; ++i)
+    grid.insert(grid.end(), {10.0f + 0.1f * i, 0.0f, 0.0f});
+  for (const auto& xyz : {sphere(kN, 0.5 * kSpacing), grid}) {
+    const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+    for (unsigned threads : {1u, 2u}) {
+      RingFits fits;
+      EXPECT_EQ(residualGrowth(graph, xyz.data(), threads, &fits),
+                residualGrowth(graph, xyz.data(), threads));
+      EXPECT_EQ(projectOntoLocalPlanes(graph, xyz.data(), threads, &fits),
+                projectOntoLocalPlanes(graph, xyz.data(), threads));
+    }
+  }
+}
+
 TEST(Denoise, TheSameForAnyNumberOfThreads) {
   const std::vector<float> xyz = sphere(kN, 0.5 * kSpacing);
   const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);

@@ -20,16 +20,17 @@ CsrGraph graphStage(std::vector<float>& xyz, const std::uint32_t* knn, std::size
   const int threads = usableThreads(num_threads);
   CsrGraph graph = buildSymmetricKnnGraph(xyz.data(), n, knn, k, threads);
   NoiseTest test;
+  RingFits fits;
   if (may_denoise && params.irregular_sampling) {
     test.sampling_irregularity = samplingIrregularity(graph);
     test.irregular = test.sampling_irregularity >= *params.irregular_sampling;
   }
   if (may_denoise && params.denoise) {
-    test.residual_growth = residualGrowth(graph, xyz.data(), num_threads);
+    test.residual_growth = residualGrowth(graph, xyz.data(), num_threads, &fits);
     test.projected = isNoisy(test.residual_growth, *params.denoise);
   }
   if (test.projected) {
-    xyz = projectOntoLocalPlanes(graph, xyz.data(), num_threads);
+    xyz = projectOntoLocalPlanes(graph, xyz.data(), num_threads, &fits);
     measureLengths(graph, xyz.data()); // the same graph, its lengths between the moved points
   }
   if (noise)

@@ -39,17 +39,19 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
   // Union of both directions. A used p -> q puts q in p's row, and p in q's row unless q -> p
   // is also a used kNN entry (then q's own entry adds it): rows hold no duplicate without a
   // sort-and-unique pass over 2nk entries, so memory stays at the size of the result.
+  // Both scans without an early exit: where the match lies is unpredictable, and a branch per
+  // entry cost more than the entries after it.
   auto listsUsed = [&](std::uint32_t q, std::size_t p, float d) {
+    bool lists = false;
     for (std::size_t j = 0; j < k; ++j)
-      if (knn[q * k + j] == p)
-        return usedAt(static_cast<std::uint32_t>(p), d);
-    return false;
+      lists |= knn[q * k + j] == p;
+    return lists && usedAt(static_cast<std::uint32_t>(p), d);
   };
   auto isDuplicateInRow = [&](std::size_t p, std::size_t j) {
+    bool duplicate = false;
     for (std::size_t i = 0; i < j; ++i)
-      if (knn[p * k + i] == knn[p * k + j])
-        return true;
-    return false;
+      duplicate |= knn[p * k + i] == knn[p * k + j];
+    return duplicate;
   };
   // Per kNN entry p -> q: bit 0, q goes into p's row; bit 1, p goes into q's row too.
   std::vector<std::uint8_t> put(n * k, 0);

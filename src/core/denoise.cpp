@@ -13,30 +13,44 @@ namespace pcl_ncut_seg {
 namespace {
 
 /// Plane of the given vertices: centroid, unit normal and RMS distance to the plane; false
-/// when they have none. Moments in double relative to the first vertex.
+/// when they have none. Moments in double relative to the first vertex. Only the lower
+/// triangle is summed: the eigensolver reads no other, and each entry is the same sum of the
+/// same products, in the same order, as Eigen's d * d^T would give.
 bool fitPlane(const float* xyz, const std::vector<std::uint32_t>& members,
               Eigen::Vector3d& centroid, Eigen::Vector3d& normal, double& rms) {
   if (members.size() < 3)
     return false;
-  const Eigen::Vector3d origin(xyz[3 * members[0]], xyz[3 * members[0] + 1],
-                               xyz[3 * members[0] + 2]);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d moments = Eigen::Matrix3d::Zero();
+  const double ox = xyz[3 * members[0]], oy = xyz[3 * members[0] + 1], oz = xyz[3 * members[0] + 2];
+  double sx = 0, sy = 0, sz = 0, xx = 0, yx = 0, yy = 0, zx = 0, zy = 0, zz = 0;
   for (std::uint32_t v : members) {
-    const Eigen::Vector3d d = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - origin;
-    sum += d;
-    moments += d * d.transpose();
+    const double dx = xyz[3 * v] - ox, dy = xyz[3 * v + 1] - oy, dz = xyz[3 * v + 2] - oz;
+    sx += dx;
+    sy += dy;
+    sz += dz;
+    xx += dx * dx;
+    yx += dy * dx;
+    yy += dy * dy;
+    zx += dz * dx;
+    zy += dz * dy;
+    zz += dz * dz;
   }
   const double m = static_cast<double>(members.size());
-  const Eigen::Vector3d mean = sum / m;
-  const Eigen::Matrix3d cov = moments - m * mean * mean.transpose();
+  const Eigen::Vector3d mean(sx / m, sy / m, sz / m);
+  const double mx = m * mean[0], my = m * mean[1], mz = m * mean[2];
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero(); // lower: moments - m * mean * mean^T
+  cov(0, 0) = xx - mx * mean[0];
+  cov(1, 0) = yx - my * mean[0];
+  cov(1, 1) = yy - my * mean[1];
+  cov(2, 0) = zx - mz * mean[0];
+  cov(2, 1) = zy - mz * mean[1];
+  cov(2, 2) = zz - mz * mean[2];
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
   solver.computeDirect(cov);
   const Eigen::Vector3d& lambda = solver.eigenvalues(); // ascending
   if (!(lambda[2] > 0.0) || !(lambda[1] > 1e-10 * lambda[2]))
     return false; // coincident or collinear
   normal = solver.eigenvectors().col(0).normalized();
-  centroid = origin + mean;
+  centroid = Eigen::Vector3d(ox, oy, oz) + mean;
   // Scatter below float rounding (squared: 1e-12 of the spread) is none: an exactly flat grid.
   rms = lambda[0] > 1e-12 * lambda[2] ? std::sqrt(lambda[0] / m) : 0.0;
   return true;
@@ -71,12 +85,28 @@ private:
   std::uint32_t tick_ = 0;
 };
 
+/// Vertex p projected onto the plane through centroid with unit normal: 3 floats to out.
+void projectOnto(const float* xyz, std::uint32_t p, const Eigen::Vector3d& centroid,
+                 const Eigen::Vector3d& normal, float* out) {
+  const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+  const Eigen::Vector3d y = x - (x - centroid).dot(normal) * normal;
+  for (int d = 0; d < 3; ++d)
+    out[d] = static_cast<float>(y[d]);
+}
+
+/// residualGrowth() fits every kStride-th vertex.
+constexpr std::size_t kStride = 4;
+
 } // namespace
 
-double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads) {
-  constexpr std::size_t kStride = 4;
+double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads,
+                      RingFits* fits) {
   const std::size_t m = (graph.numVertices() + kStride - 1) / kStride;
   std::vector<double> rms1(m, 0.0), rms2(m, 0.0);
+  if (fits) {
+    fits->state.assign(m, 0);
+    fits->projected.assign(3 * m, 0.0f);
+  }
   const auto sm = static_cast<std::int64_t>(m);
 #pragma omp parallel num_threads(usableThreads(num_threads))
   {
@@ -85,11 +115,19 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
     double r1 = 0.0, r2 = 0.0;
 #pragma omp for schedule(static, 256)
     for (std::int64_t i = 0; i < sm; ++i) {
-      rings.collect(graph, static_cast<std::uint32_t>(i * kStride));
-      if (fitPlane(xyz, rings.ring1(), centroid, normal, r1) &&
-          fitPlane(xyz, rings.ring2(), centroid, normal, r2)) {
+      const auto p = static_cast<std::uint32_t>(i * kStride);
+      rings.collect(graph, p);
+      if (!fitPlane(xyz, rings.ring1(), centroid, normal, r1))
+        continue;
+      const bool plane = fitPlane(xyz, rings.ring2(), centroid, normal, r2);
+      if (plane) {
         rms1[i] = r1;
         rms2[i] = r2;
+      }
+      if (fits) {
+        fits->state[i] = plane ? 1 : 2;
+        if (plane)
+          projectOnto(xyz, p, centroid, normal, &fits->projected[3 * i]);
       }
     }
   }
@@ -127,7 +165,7 @@ double samplingIrregularity(const CsrGraph& graph) {
 }
 
 std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
-                                          unsigned num_threads) {
+                                          unsigned num_threads, const RingFits* fits) {
   const std::size_t n = graph.numVertices();
   std::vector<float> out(xyz, xyz + 3 * n);
   const auto sn = static_cast<std::int64_t>(n);
@@ -139,13 +177,14 @@ std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xy
 #pragma omp for schedule(static, 1024)
     for (std::int64_t sp = 0; sp < sn; ++sp) {
       const auto p = static_cast<std::uint32_t>(sp);
-      rings.collect(graph, p);
-      if (!fitPlane(xyz, rings.ring2(), centroid, normal, rms))
+      if (fits && p % kStride == 0 && fits->state[p / kStride] != 0) { // fitted already
+        if (fits->state[p / kStride] == 1)
+          std::copy_n(&fits->projected[3 * (p / kStride)], 3, &out[3 * p]);
         continue;
-      const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
-      const Eigen::Vector3d y = x - (x - centroid).dot(normal) * normal;
-      for (int d = 0; d < 3; ++d)
-        out[3 * p + d] = static_cast<float>(y[d]);
+      }
+      rings.collect(graph, p);
+      if (fitPlane(xyz, rings.ring2(), centroid, normal, rms))
+        projectOnto(xyz, p, centroid, normal, &out[3 * p]);
     }
   }
   return out;

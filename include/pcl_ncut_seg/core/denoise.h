@@ -10,9 +10,18 @@
 
 #include <pcl_ncut_seg/core/csr_graph.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace pcl_ncut_seg {
+
+/** \brief The 2-ring fits residualGrowth() made, for projectOntoLocalPlanes() on the same graph
+ * and points to reuse (the same fits, bit for bit: a quarter of the projection's work). */
+struct RingFits {
+  /// Per vertex 4 i: 0 not fitted (its 1-ring has no plane), 1 fitted, 2 its 2-ring has none.
+  std::vector<std::uint8_t> state;
+  std::vector<float> projected; ///< per vertex 4 i with state 1: it projected, x y z
+};
 
 /** \brief Residual growth: over every 4th vertex (in vertex order; a mean needs no more), the
  * sum of the RMS distances to the least-squares planes of their 2-rings (the vertex, its graph
@@ -22,8 +31,10 @@ namespace pcl_ncut_seg {
  * or there is no scatter (an exactly flat cloud).
  * \param[in] graph        the symmetric kNN graph
  * \param[in] xyz          3 floats per vertex
- * \param[in] num_threads  0 = all cores; the result does not depend on it */
-double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads = 0);
+ * \param[in] num_threads  0 = all cores; the result does not depend on it
+ * \param[out] fits        if given, the 2-ring fits, for projectOntoLocalPlanes() */
+double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_threads = 0,
+                      RingFits* fits = nullptr);
 
 /** \brief Sampling irregularity: over the vertices with an edge, the coefficient of variation
  * (standard deviation over mean) of the ratio of each vertex's shortest graph edge to its mean
@@ -60,9 +71,10 @@ inline bool isNoisy(double residual_growth, double growth_bound) {
 /** \brief Each vertex projected onto the least-squares plane of its 2-ring: 3 floats per
  * vertex (the vertex itself where the 2-ring has no plane: fewer than 3 points, collinear or
  * coincident).
- * \param[in] num_threads  0 = all cores; the result does not depend on it */
+ * \param[in] num_threads  0 = all cores; the result does not depend on it
+ * \param[in] fits         if given, residualGrowth()'s fits on the same graph and points */
 std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xyz,
-                                          unsigned num_threads = 0);
+                                          unsigned num_threads = 0, const RingFits* fits = nullptr);
 
 /** \brief Per vertex, the mean of values over its closed neighbourhood in the graph (the vertex
  * and its neighbours, equally weighted), summed in double in edge order.
