@@ -227,7 +227,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   const bool organized = input_->isOrganized() && input_->width > 2 && input_->height > 2;
   if (!params_.cad.enabled && organized)
     prepared.set.rim = organizedRim();
-  if (!params_.cad.enabled) { // unorganized: the core decides whether it is one view
+  if (!params_.cad.enabled) { // a view's normals face it; is a list one view from it?
     std::array<float, 3> origin;
     for (int d = 0; d < 3; ++d)
       origin[d] = static_cast<float>(input_->sensor_origin_[d] - prepared.centroid[d]);
