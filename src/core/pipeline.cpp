@@ -77,17 +77,10 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
   // mostly along the normals that the projection takes it out along (docs/sampling.md).
   // One view (it has a rim): one start. Its parts are decided more by the rim stages than by
   // the start, and a depth camera's frame rate counts (docs/views.md).
-  // Its coarse graph has a quarter of the representatives, for the same reason: on dev views
-  // of 7,000-36,000 points, 2,500-20,000 representatives score alike (docs/views.md).
   const auto starts =
       rim.empty() ? static_cast<std::size_t>(std::max(1, params.centrality.starts)) : 1;
-  Parameters view_params;
-  if (!rim.empty()) {
-    view_params = params;
-    view_params.centrality.representatives = std::max(100, params.centrality.representatives / 4);
-  }
-  std::vector<Centrality> f = centralityStage(graph, rim.empty() ? params : view_params, tie_rank,
-                                              times, progress, starts, average && rim.empty());
+  std::vector<Centrality> f =
+      centralityStage(graph, params, tie_rank, times, progress, starts, average && rim.empty());
   const DistinctStarts distinct = distinctStarts(f);
   // Phase by phase over the starts, so that progress reports each phase once.
   const std::size_t num = distinct.start.size();
