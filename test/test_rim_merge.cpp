@@ -86,6 +86,9 @@ TEST(OrganizedRim, MarksTheImageBorderHolesAndDepthJumps) {
 
 namespace {
 
+/// Each side's band in the tests on unit grids: 3 spacings.
+constexpr double kBand = 3.0;
+
 /// Unit normals (0, 0, 1) for n points.
 std::vector<float> upNormals(std::size_t n) {
   std::vector<float> normals(3 * n, 0.0f);
@@ -124,7 +127,7 @@ TEST(RimMerge, MergesTheFlatPiecesOfAnOpenSheet) {
   std::vector<std::uint32_t> segment = discAndQuadrants(w, h);
   std::size_t t = 5;
   const std::vector<std::uint32_t> map =
-      mergeAcrossRim(graph, outerRing(w, h), xyz, upNormals(w * h), 10.0, segment, t);
+      mergeAcrossRim(graph, outerRing(w, h), xyz, upNormals(w * h), 10.0, kBand, segment, t);
   EXPECT_EQ(t, 1u);
   EXPECT_EQ(countLabels(segment), 1u);
   ASSERT_EQ(map.size(), 5u);
@@ -139,22 +142,24 @@ TEST(RimMerge, KeepsBoundariesAlongConcaveCreases) {
   Fold valley = fold(w, h, std::tan(30.0 * 3.14159265358979 / 180.0));
   std::size_t t = 2;
   const CsrGraph graph = test::kdTreeKnnGraph(valley.xyz, 8);
-  EXPECT_TRUE(
-      mergeAcrossRim(graph, outerRing(w, h), valley.xyz, valley.normals, 10.0, valley.segment, t)
-          .empty());
+  EXPECT_TRUE(mergeAcrossRim(graph, outerRing(w, h), valley.xyz, valley.normals, 10.0, kBand,
+                             valley.segment, t)
+                  .empty());
   EXPECT_EQ(t, 2u);
   // Below the bound (70 degrees) the same valley is not a crease.
-  EXPECT_EQ(
-      mergeAcrossRim(graph, outerRing(w, h), valley.xyz, valley.normals, 70.0, valley.segment, t)
-          .size(),
-      2u);
+  EXPECT_EQ(mergeAcrossRim(graph, outerRing(w, h), valley.xyz, valley.normals, 70.0, kBand,
+                           valley.segment, t)
+                .size(),
+            2u);
   EXPECT_EQ(t, 1u);
   // A ridge (convex) merges, and so does a valley of 6 degrees (slope tan 3).
   for (double degrees : {-30.0, 3.0}) {
     Fold f = fold(w, h, std::tan(degrees * 3.14159265358979 / 180.0));
     std::size_t two = 2;
     const CsrGraph g = test::kdTreeKnnGraph(f.xyz, 8);
-    EXPECT_EQ(mergeAcrossRim(g, outerRing(w, h), f.xyz, f.normals, 10.0, f.segment, two).size(), 2u)
+    EXPECT_EQ(
+        mergeAcrossRim(g, outerRing(w, h), f.xyz, f.normals, 10.0, kBand, f.segment, two).size(),
+        2u)
         << degrees;
     EXPECT_EQ(two, 1u) << degrees;
   }
@@ -176,7 +181,8 @@ TEST(RimMerge, KeepsALimbOnTheRim) {
     rim[29 * 30 + x] = 0; // where the limb joins, the sheet goes on
   const CsrGraph graph = test::kdTreeKnnGraph(xyz, 8);
   std::size_t t = 2;
-  EXPECT_TRUE(mergeAcrossRim(graph, rim, xyz, upNormals(xyz.size() / 3), 10.0, segment, t).empty());
+  EXPECT_TRUE(
+      mergeAcrossRim(graph, rim, xyz, upNormals(xyz.size() / 3), 10.0, kBand, segment, t).empty());
   EXPECT_EQ(t, 2u);
 }
 
@@ -188,13 +194,14 @@ TEST(RimMerge, NothingWithoutARim) {
   const std::vector<std::uint32_t> before = segment;
   std::size_t t = 5;
   const std::vector<std::uint8_t> none(w * h, 0);
-  EXPECT_TRUE(mergeAcrossRim(graph, none, xyz, upNormals(w * h), 10.0, segment, t).empty());
+  EXPECT_TRUE(mergeAcrossRim(graph, none, xyz, upNormals(w * h), 10.0, kBand, segment, t).empty());
   EXPECT_EQ(segment, before);
   // Sizes that do not match the graph: no merge, no crash.
   EXPECT_TRUE(mergeAcrossRim(graph, std::vector<std::uint8_t>(3, 1), xyz, upNormals(w * h), 10.0,
-                             segment, t)
+                             kBand, segment, t)
                   .empty());
-  EXPECT_TRUE(mergeAcrossRim(graph, outerRing(w, h), xyz, upNormals(3), 10.0, segment, t).empty());
+  EXPECT_TRUE(
+      mergeAcrossRim(graph, outerRing(w, h), xyz, upNormals(3), 10.0, kBand, segment, t).empty());
   EXPECT_EQ(t, 5u);
 }
 
@@ -302,4 +309,61 @@ TEST(RimMerge, TheSameForAnyThreadCount) {
   ASSERT_EQ(one.size(), two.size());
   for (std::size_t s = 0; s < one.size(); ++s)
     EXPECT_EQ(one[s].indices, two[s].indices);
+}
+
+namespace {
+/// A valley of w x h units sampled on a grid of the given spacing, faces sloping up at
+/// `degrees` on either side of x = w / 2, rounded by a parabola over |x - w / 2| < a; with
+/// its normals (pointing up) and its two faces as segments 0 and 1.
+Fold roundedValley(double w, double h, double spacing, double degrees, double a) {
+  Fold f;
+  const double slope = std::tan(degrees * 3.14159265358979 / 180.0), cx = 0.5 * w;
+  const auto nx = static_cast<int>(std::lround(w / spacing)),
+             ny = static_cast<int>(std::lround(h / spacing));
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double dx = i * spacing - cx, ax = std::abs(dx);
+      const double z = ax < a ? slope * dx * dx / (2 * a) : slope * (ax - 0.5 * a);
+      const double dz = ax < a ? slope * dx / a : (dx < 0 ? -slope : slope);
+      const double len = std::sqrt(1 + dz * dz);
+      f.xyz.insert(f.xyz.end(), {static_cast<float>(i * spacing), static_cast<float>(j * spacing),
+                                 static_cast<float>(z)});
+      f.normals.insert(f.normals.end(),
+                       {static_cast<float>(-dz / len), 0.0f, static_cast<float>(1 / len)});
+      f.segment.push_back(dx < 0 ? 0u : 1u);
+    }
+  return f;
+}
+
+std::vector<std::uint8_t> outerRingOf(const Fold& f, double w, double h) {
+  std::vector<std::uint8_t> rim;
+  for (std::size_t p = 0; p < f.segment.size(); ++p) {
+    const double x = f.xyz[3 * p], y = f.xyz[3 * p + 1];
+    rim.push_back(x < 1e-3 || y < 1e-3 || x > w - 1e-3 || y > h - 1e-3);
+  }
+  return rim;
+}
+} // namespace
+
+TEST(RimMerge, MeasuresTheSameBandAtAnyDensity) {
+  // Faces at 25 degrees (50 between them) rounded over 8 units: a crease at the scale of a
+  // band of 8 units, flat within a few spacings of the boundary once the cloud is dense.
+  const double w = 30, h = 60;
+  for (double spacing : {1.0, 0.25}) {
+    Fold f = roundedValley(w, h, spacing, 25.0, 4.0);
+    const CsrGraph graph = test::kdTreeKnnGraph(f.xyz, 8);
+    std::size_t t = 2;
+    EXPECT_TRUE(
+        mergeAcrossRim(graph, outerRingOf(f, w, h), f.xyz, f.normals, 10.0, 8.0, f.segment, t)
+            .empty())
+        << spacing;
+    EXPECT_EQ(t, 2u) << spacing;
+    if (spacing < 1.0) { // a band of 3 spacings sees only the rounding's bottom: merged
+      EXPECT_EQ(mergeAcrossRim(graph, outerRingOf(f, w, h), f.xyz, f.normals, 10.0, 3 * spacing,
+                               f.segment, t)
+                    .size(),
+                2u);
+      EXPECT_EQ(t, 1u);
+    }
+  }
 }

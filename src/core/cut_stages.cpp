@@ -8,6 +8,7 @@
 #include <pcl_ncut_seg/core/small_segments.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 
@@ -70,12 +71,28 @@ void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r
   refineBoundaries(*a.graph, a.radii, a.crease, params, r.point_segment, r.num_segments);
 }
 
+namespace {
+/// The view's area: the points' areas (Sec. 4.3's radii) summed.
+double viewArea(const Analysis& a) {
+  double total = 0.0;
+  for (float r : a.radii)
+    total += pointArea(r);
+  return total;
+}
+// The paper's small (Sec. 4.3): a part of 1% of the object's area.
+constexpr double kSmallPart = 0.01;
+} // namespace
+
 void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_xyz.empty())
     return;
+  // Each side of a boundary is measured over half the width of the smallest part the paper
+  // keeps, in the view's own units: the object's area is at least twice the view's (as in
+  // viewSmallSegmentStage()), and the same surface sampled more densely gives the same band.
+  const double band_width = 0.5 * std::sqrt(kSmallPart * 2.0 * viewArea(a));
   const std::vector<std::uint32_t> map =
-      mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, r.point_segment,
-                     r.num_segments);
+      mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, band_width,
+                     r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];
@@ -85,12 +102,11 @@ void viewSmallSegmentStage(const Analysis& a, const BoundaryParams& params, CutR
   if (a.cad || !params.view_small_segment || a.rim.empty())
     return;
   std::vector<double> area(a.radii.size());
-  double total = 0.0;
   for (std::size_t p = 0; p < area.size(); ++p)
-    total += area[p] = pointArea(a.radii[p]);
+    area[p] = pointArea(a.radii[p]);
   // A view shows at most half of a closed surface: the object's area is at least twice the
   // view's, and the paper's small is a fraction of the object's.
-  const double min_area = *params.view_small_segment * 2.0 * total;
+  const double min_area = *params.view_small_segment * 2.0 * viewArea(a);
   const std::vector<std::uint32_t> map =
       joinSmallSegments(*a.graph, area, min_area, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)

@@ -278,7 +278,8 @@ void boundaryRows(Rows& t) {
       row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "DEG",
           "open views (an organized cloud, or one view from the sensor origin): merge two "
           "touching segments, one reaching the view's rim, when the planes of the boundary's "
-          "two sides (3 rings each) meet at a concave angle below DEG degrees and its neck is "
+          "two sides (each its points within half the width of a part of 1% of the object's "
+          "area) meet at a concave angle below DEG degrees and its neck is "
           "at least sqrt(pi) (no limb's); not in CAD mode",
           false),
       leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));

@@ -7,7 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numeric>
+#include <queue>
+#include <utility>
 
 namespace pcl_ncut_seg {
 
@@ -34,8 +38,6 @@ constexpr double kPi = 3.14159265358979323846;
 // radius a and length 2a has 2 pi a / sqrt(2 pi a 2a) = sqrt(pi). A piece chipped off at the
 // rim has a wider one (a half disc: sqrt(2 pi)); a limb a narrower one.
 const double kLimbNeck = std::sqrt(kPi);
-// Each side of a boundary: its points within this many rings of the other side.
-constexpr int kBandRings = 3;
 
 /// Moments of one side of a boundary: enough to fit its plane, and to add up when segments
 /// merge.
@@ -69,13 +71,17 @@ struct Band {
 };
 
 /// Per ordered pair (a, b) of segments (index a * t + b), a's band towards b: the points of a
-/// within kBandRings rings of b, by a breadth-first search from b's neighbours.
+/// within band_width of b along kNN edges inside a (a search from a's points next to b).
 std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz,
                             const std::vector<float>& normals,
-                            const std::vector<std::uint32_t>& segment, std::size_t t) {
+                            const std::vector<std::uint32_t>& segment, std::size_t t,
+                            double band_width) {
   const std::size_t n = graph.numVertices();
   std::vector<Band> band(t * t);
-  std::vector<std::uint32_t> seen(n, kNone), frontier, next, border;
+  std::vector<std::uint32_t> seen(n, kNone), border, touched;
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  using Entry = std::pair<double, std::uint32_t>; // distance, vertex: the nearest, then lowest
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   for (std::uint32_t p = 0; p < n; ++p) // the points with a neighbour in another segment
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
       if (segment[graph.targets[e]] != segment[p]) {
@@ -83,34 +89,41 @@ std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz
         break;
       }
   for (std::uint32_t b = 0; b < t; ++b) {
-    frontier.clear();
     for (std::uint32_t p : border)
       if (segment[p] != b)
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
           if (segment[graph.targets[e]] == b) {
-            seen[p] = b;
-            frontier.push_back(p);
+            dist[p] = 0.0;
+            touched.push_back(p);
+            queue.emplace(0.0, p);
             break;
           }
-    for (int ring = 0; ring < kBandRings && !frontier.empty(); ++ring) {
-      next.clear();
-      for (std::uint32_t p : frontier) {
-        Band& bd = band[segment[p] * t + b];
-        const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
-        bd.count += 1;
-        bd.sum += x;
-        bd.outer += x * x.transpose();
-        bd.normal += Eigen::Vector3d(normals[3 * p], normals[3 * p + 1], normals[3 * p + 2]);
-        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-          const std::uint32_t q = graph.targets[e];
-          if (seen[q] != b && segment[q] == segment[p]) {
-            seen[q] = b;
-            next.push_back(q);
-          }
+    while (!queue.empty()) {
+      const auto [d, p] = queue.top();
+      queue.pop();
+      if (seen[p] == b || d > dist[p])
+        continue;
+      seen[p] = b;
+      Band& bd = band[segment[p] * t + b];
+      const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
+      bd.count += 1;
+      bd.sum += x;
+      bd.outer += x * x.transpose();
+      bd.normal += Eigen::Vector3d(normals[3 * p], normals[3 * p + 1], normals[3 * p + 2]);
+      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph.targets[e];
+        const double dq = d + graph.lengths[e];
+        if (segment[q] == segment[p] && seen[q] != b && dq <= band_width && dq < dist[q]) {
+          if (dist[q] == std::numeric_limits<double>::infinity())
+            touched.push_back(q);
+          dist[q] = dq;
+          queue.emplace(dq, q);
         }
       }
-      frontier.swap(next);
     }
+    for (std::uint32_t p : touched)
+      dist[p] = std::numeric_limits<double>::infinity();
+    touched.clear();
   }
   return band;
 }
@@ -140,7 +153,7 @@ double concaveAngle(const std::vector<Band>& band, const std::vector<std::uint32
 std::vector<std::uint32_t>
 mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
                const std::vector<float>& xyz, const std::vector<float>& normals, double max_degrees,
-               std::vector<std::uint32_t>& segment, std::size_t& num_segments) {
+               double band_width, std::vector<std::uint32_t>& segment, std::size_t& num_segments) {
   const std::size_t n = graph.numVertices(), t = num_segments;
   if (rim.size() != n || xyz.size() != 3 * n || normals.size() != 3 * n || t < 2)
     return {};
@@ -148,7 +161,7 @@ mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
   for (std::uint32_t p = 0; p < n; ++p)
     on_rim[segment[p]] |= rim[p];
   // Measured once over the input segments; a merged segment's sides are sums of these.
-  const std::vector<Band> band = sideBands(graph, xyz, normals, segment, t);
+  const std::vector<Band> band = sideBands(graph, xyz, normals, segment, t, band_width);
   // No vote (core/short_cut.h): these boundaries are the boundary refinement's cuts, not a
   // fringe of interleaved supernodes.
   const NeckMeasure necks(graph, segment, t, false);

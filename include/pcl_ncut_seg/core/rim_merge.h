@@ -29,7 +29,9 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
 
 /** \brief Merge touching segments of an open surface whose common boundary is neither a
  * concave crease nor a limb's neck, when one of the two reaches the rim. Each side of a
- * boundary is its points within 3 rings of the other side; a plane fitted to each (least
+ * boundary is its points within band_width of the other side (along kNN edges, inside the
+ * side: a length of the surface, so that a denser cloud measures the same band); a plane
+ * fitted to each (least
  * squares, oriented by the normals) gives the angle at which the two sides meet, concave when
  * the normals lean towards each other. Noise along a flat face averages out over the band,
  * where the bends between single normals, along boundaries that earlier stages drew through
@@ -43,12 +45,13 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
  * \param[in] normals        3 floats per vertex, oriented (orientedNormals() in core/concavity.h)
  * \param[in] max_degrees    a boundary whose sides meet at a concave angle below this is not a
  *                           crease
+ * \param[in] band_width     the width of each side's band, in the units of xyz (> 0)
  * \param[in,out] segment    per vertex, its segment; compact ids on output
  * \param[in,out] num_segments
  * \return per old segment, its new one (empty when nothing merged) */
 std::vector<std::uint32_t>
 mergeAcrossRim(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
                const std::vector<float>& xyz, const std::vector<float>& normals, double max_degrees,
-               std::vector<std::uint32_t>& segment, std::size_t& num_segments);
+               double band_width, std::vector<std::uint32_t>& segment, std::size_t& num_segments);
 
 } // namespace pcl_ncut_seg
