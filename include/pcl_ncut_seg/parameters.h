@@ -168,9 +168,9 @@ struct BoundaryParams {
   double crease_weight = 3.0; ///< a kNN edge costs its length times exp(-w c), c its bend
   /// Extension (core/rim_merge.h), open views only: two touching segments, one of which
   /// reaches the view's rim, are merged when the planes of the boundary's two sides (each its
-  /// points within half the width of the smallest part, 1% of the object, of the other side)
-  /// meet at a concave angle below this many degrees (PCL's LCCP calls 10 degrees convex) and
-  /// the boundary is no limb's neck. Off: the paper.
+  /// points within half the width of the smallest part, 1% of the object's feature area, of
+  /// the other side) meet at a concave angle below this many degrees (PCL's LCCP calls 10
+  /// degrees convex) and the boundary is no limb's neck. Off: the paper.
   std::optional<double> rim_merge = 10.0;
   /// Extension (core/small_segments.h), open views only: a segment whose area is below this
   /// fraction of the object's area joins the touching segment it shares most kNN edges with

@@ -72,7 +72,7 @@ void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r
 }
 
 namespace {
-/// The view's area: the points' areas (Sec. 4.3's radii) summed.
+/// The view's feature area: the points' discs pi r(p)^2 (Sec. 4.3) summed.
 double viewArea(const Analysis& a) {
   double total = 0.0;
   for (float r : a.radii)
@@ -87,8 +87,9 @@ void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_xyz.empty())
     return;
   // Each side of a boundary is measured over half the width of the smallest part the paper
-  // keeps, in the view's own units: the object's area is at least twice the view's (as in
-  // viewSmallSegmentStage()), and the same surface sampled more densely gives the same band.
+  // keeps, in feature area (the discs overlap: wider than the part's true half-width): the
+  // object's area is at least twice the view's (as in viewSmallSegmentStage()). A length of
+  // the surface: sampled more densely, it gives the same band.
   const double band_width = 0.5 * std::sqrt(kSmallPart * 2.0 * viewArea(a));
   const std::vector<std::uint32_t> map =
       mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, band_width,

@@ -279,7 +279,7 @@ void boundaryRows(Rows& t) {
           "open views (an organized cloud, or one view from the sensor origin): merge two "
           "touching segments, one reaching the view's rim, when the planes of the boundary's "
           "two sides (each its points within half the width of a part of 1% of the object's "
-          "area) meet at a concave angle below DEG degrees and its neck is "
+          "feature area) meet at a concave angle below DEG degrees and its neck is "
           "at least sqrt(pi) (no limb's); not in CAD mode",
           false),
       leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));
