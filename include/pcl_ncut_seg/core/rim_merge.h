@@ -31,11 +31,10 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
  * concave crease nor a limb's neck, when one of the two reaches the rim. Each side of a
  * boundary is its points within band_width of the other side (along kNN edges, inside the
  * side: a length of the surface, so that a denser cloud measures the same band); a plane
- * fitted to each (least
- * squares, oriented by the normals) gives the angle at which the two sides meet, concave when
- * the normals lean towards each other. Noise along a flat face averages out over the band,
- * where the bends between single normals, along boundaries that earlier stages drew through
- * the most concave of them, do not. A limb's neck is narrower than sqrt(pi) (core/short_cut.h's
+ * fitted to each (least squares, oriented by the normals) gives the angle at which the two
+ * sides meet, concave when the normals lean towards each other. Noise along a flat face
+ * averages out over the band, where the bends between single normals, along boundaries that
+ * earlier stages drew through the most concave of them, do not. A limb's neck is narrower than sqrt(pi) (core/short_cut.h's
  * neck of a tube as long as it is wide); a piece chipped off at the rim has a wider one. Of
  * the qualifying pairs the least concave (then the smallest ids) merges first, and the merged
  * boundaries are measured again, until none qualifies.
