@@ -34,10 +34,10 @@ std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_
  * fitted to each (least squares, oriented by the normals) gives the angle at which the two
  * sides meet, concave when the normals lean towards each other. Noise along a flat face
  * averages out over the band, where the bends between single normals, along boundaries that
- * earlier stages drew through the most concave of them, do not. A limb's neck is narrower than sqrt(pi) (core/short_cut.h's
- * neck of a tube as long as it is wide); a piece chipped off at the rim has a wider one. Of
- * the qualifying pairs the least concave (then the smallest ids) merges first, and the merged
- * boundaries are measured again, until none qualifies.
+ * earlier stages drew through the most concave of them, do not. A limb's neck is narrower
+ * than sqrt(pi) (core/short_cut.h's neck of a tube as long as it is wide); a piece chipped off
+ * at the rim has a wider one. Of the qualifying pairs the least concave (then the smallest
+ * ids) merges first, and the merged boundaries are measured again, until none qualifies.
  * \param[in] graph          kNN graph
  * \param[in] rim            per vertex, 1 on the view's rim
  * \param[in] xyz            3 floats per vertex
