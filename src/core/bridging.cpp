@@ -61,15 +61,19 @@ public:
         slot = (slot + 1) & (table_.size() - 1);
       table_[slot] = i;
     }
-    pure_.assign(numCells(), 0);
-    for (std::uint32_t i = 0; i < numCells(); ++i)
-      pure_[i] = pureStepsOf(i);
+    pure_.assign(numCells(), kUnknown);
   }
 
   std::uint32_t numCells() const { return static_cast<std::uint32_t>(component_.size()); }
   std::int64_t coord(std::uint32_t v, int d) const { return coords_[3 * v + d]; }
   std::uint32_t component(std::uint32_t i) const { return component_[i]; }
-  std::uint8_t pureSteps(std::uint32_t i) const { return pure_[i]; }
+  /// Steps (at most 2) within which every occupied cell holds cell i's component only;
+  /// measured on first use (most cells belong to the component that is never scanned).
+  std::uint8_t pureSteps(std::uint32_t i) {
+    if (pure_[i] == kUnknown)
+      pure_[i] = pureStepsOf(i);
+    return pure_[i];
+  }
   struct Range {
     const std::uint32_t *b, *e;
     const std::uint32_t* begin() const { return b; }
@@ -100,7 +104,8 @@ private:
     return static_cast<std::size_t>(h) & (table_.size() - 1);
   }
 
-  /// Steps (at most 2) within which every occupied cell holds cell i's component only.
+  static constexpr std::uint8_t kUnknown = 0xFF;
+
   std::uint8_t pureStepsOf(std::uint32_t i) const {
     if (component_[i] == kMixed)
       return 0;
@@ -159,7 +164,14 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
 
   // Uniform grid of cell size `cell`: the points sorted by cell, each occupied cell a range of
   // them, found through an open-addressing table on its integer coordinates.
-  const CellGrid grid(xyz, n, cell, comp);
+  CellGrid grid(xyz, n, cell, comp);
+  // A pair lies within both points' reach, so it is found from either side: the points of the
+  // largest component (most of a view or a scan) need not look (ties: the smallest id).
+  std::vector<std::size_t> size(num_comps, 0);
+  for (std::uint32_t c : comp)
+    ++size[c];
+  const auto largest =
+      static_cast<std::uint32_t>(std::max_element(size.begin(), size.end()) - size.begin());
 
   // The shortest admissible pair per pair of components: no longer than either point's reach
   // (each point looks within its own, so the pair is found from both sides).
@@ -180,7 +192,7 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
       it->second = c;
   };
   for (std::uint32_t p = 0; p < n; ++p) {
-    if (!(reach[p] > 0.0) || !std::isfinite(reach[p]))
+    if (comp[p] == largest || !(reach[p] > 0.0) || !std::isfinite(reach[p]))
       continue;
     const double span = std::ceil(reach[p] / cell);
     if (std::pow(2.0 * span + 1.0, 3) > static_cast<double>(grid.numCells())) {
