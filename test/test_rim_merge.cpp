@@ -2,7 +2,10 @@
  * Open views: the rim of an organized cloud and the segments only the rim cut apart
  * (core/rim_merge.h, SupernodeNCutSegmentation::setRimMerge).
  */
+#include <pcl_ncut_seg/core/centrality.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
+#include <pcl_ncut_seg/core/cut_stages.h>
+#include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/supernodes.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
@@ -366,4 +369,29 @@ TEST(RimMerge, MeasuresTheSameBandAtAnyDensity) {
       EXPECT_EQ(t, 1u);
     }
   }
+}
+
+TEST(RimMerge, TheStageMeasuresABandOfTheSameLengthAtAnyDensity) {
+  // What rimStage() hands mergeAcrossRim(): a 24 x 16 sheet at spacings 0.5, 0.25 and 0.125
+  // (1,600 to 25,000 points, a view's), r(p) from its own centrality as the pipeline has them.
+  std::vector<double> widths;
+  for (double spacing : {0.5, 0.25, 0.125}) {
+    const auto w = static_cast<std::size_t>(std::lround(24 / spacing)) + 1,
+               h = static_cast<std::size_t>(std::lround(16 / spacing)) + 1;
+    std::vector<float> xyz = sheet(w, h);
+    for (float& c : xyz)
+      c = static_cast<float>(c * spacing);
+    const CsrGraph graph = test::kdTreeKnnGraph(xyz, 10);
+    const std::vector<float> radii = pointRadii(graph, computeCentrality(graph, 0, 1).f);
+    widths.push_back(rimBandWidth(radii));
+    std::cout << "[ INFO     ] spacing " << spacing << ": band " << widths.back() << "\n";
+  }
+  // A length of the surface: within a few percent at every density (the sheet's border holds
+  // a falling share of the points); 3 rings of kNN edges would shrink 4 times.
+  for (double width : widths)
+    EXPECT_NEAR(width / widths[0], 1.0, 0.05);
+  // About a part of 1% of the object (twice the sheet, 768 square units: half-width 1.4),
+  // widened by the overlap of the feature discs (Sec. 4.3) but far below the sheet's size.
+  EXPECT_GT(widths[0], 1.4);
+  EXPECT_LT(widths[0], 8.0);
 }

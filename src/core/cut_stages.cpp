@@ -73,9 +73,9 @@ void boundaryStage(const Analysis& a, const BoundaryParams& params, CutResult& r
 
 namespace {
 /// The view's feature area: the points' discs pi r(p)^2 (Sec. 4.3) summed.
-double viewArea(const Analysis& a) {
+double viewArea(const std::vector<float>& radii) {
   double total = 0.0;
-  for (float r : a.radii)
+  for (float r : radii)
     total += pointArea(r);
   return total;
 }
@@ -83,17 +83,19 @@ double viewArea(const Analysis& a) {
 constexpr double kSmallPart = 0.01;
 } // namespace
 
+double rimBandWidth(const std::vector<float>& radii) {
+  // Half the width of the smallest part the paper keeps, in feature area (the discs overlap:
+  // wider than the part's true half-width); the object's area is at least twice the view's
+  // (as in viewSmallSegmentStage()).
+  return 0.5 * std::sqrt(kSmallPart * 2.0 * viewArea(radii));
+}
+
 void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_xyz.empty())
     return;
-  // Each side of a boundary is measured over half the width of the smallest part the paper
-  // keeps, in feature area (the discs overlap: wider than the part's true half-width): the
-  // object's area is at least twice the view's (as in viewSmallSegmentStage()). A length of
-  // the surface: sampled more densely, it gives the same band.
-  const double band_width = 0.5 * std::sqrt(kSmallPart * 2.0 * viewArea(a));
   const std::vector<std::uint32_t> map =
-      mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge, band_width,
-                     r.point_segment, r.num_segments);
+      mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge,
+                     rimBandWidth(a.radii), r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];
@@ -107,7 +109,7 @@ void viewSmallSegmentStage(const Analysis& a, const BoundaryParams& params, CutR
     area[p] = pointArea(a.radii[p]);
   // A view shows at most half of a closed surface: the object's area is at least twice the
   // view's, and the paper's small is a fraction of the object's.
-  const double min_area = *params.view_small_segment * 2.0 * viewArea(a);
+  const double min_area = *params.view_small_segment * 2.0 * viewArea(a.radii);
   const std::vector<std::uint32_t> map =
       joinSmallSegments(*a.graph, area, min_area, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)

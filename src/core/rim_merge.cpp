@@ -78,7 +78,7 @@ std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz
                             double band_width) {
   const std::size_t n = graph.numVertices();
   std::vector<Band> band(t * t);
-  std::vector<std::uint32_t> seen(n, kNone), border, touched;
+  std::vector<std::uint32_t> border, touched;
   std::vector<double> dist(n, std::numeric_limits<double>::infinity());
   using Entry = std::pair<double, std::uint32_t>; // distance, vertex: the nearest, then lowest
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
@@ -101,9 +101,8 @@ std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz
     while (!queue.empty()) {
       const auto [d, p] = queue.top();
       queue.pop();
-      if (seen[p] == b || d > dist[p])
-        continue;
-      seen[p] = b;
+      if (d > dist[p])
+        continue; // a stale entry: distances only fall, strictly, so p pops once at dist[p]
       Band& bd = band[segment[p] * t + b];
       const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
       bd.count += 1;
@@ -113,7 +112,7 @@ std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         const double dq = d + graph.lengths[e];
-        if (segment[q] == segment[p] && seen[q] != b && dq <= band_width && dq < dist[q]) {
+        if (segment[q] == segment[p] && dq <= band_width && dq < dist[q]) {
           if (dist[q] == std::numeric_limits<double>::infinity())
             touched.push_back(q);
           dist[q] = dq;

@@ -27,6 +27,13 @@ void labelPoints(const Analysis& analysis, CutResult& result);
  * mode or with the band off. */
 void boundaryStage(const Analysis& analysis, const BoundaryParams& params, CutResult& result);
 
+/** \brief The width of each side of a boundary that the rim stage measures: half the width
+ * of a part of the paper's small size (1% of the object's feature area, Sec. 4.3; the object
+ * taken as twice the view). A length of the surface: the same at any density.
+ * \param[in] radii  per point r(p) (pointRadii()), of the view's points
+ * \return the width, in the points' units */
+double rimBandWidth(const std::vector<float>& radii);
+
 /** \brief Rim stage (extension, open views): merge segments that only the view's rim cut
  * apart (core/rim_merge.h). No effect in CAD mode, with rim_merge off or without a rim. */
 void rimStage(const Analysis& analysis, const BoundaryParams& params, CutResult& result);
