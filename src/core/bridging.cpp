@@ -174,7 +174,7 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
       static_cast<std::uint32_t>(std::max_element(size.begin(), size.end()) - size.begin());
 
   // The shortest admissible pair per pair of components: no longer than either point's reach
-  // (each point looks within its own, so the pair is found from both sides).
+  // (each point that looks, looks within its own, so a pair is found from either point).
   using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>; // length, p, q (p < q)
   std::map<std::pair<std::uint32_t, std::uint32_t>, Candidate> shortest;
   auto consider = [&](std::uint32_t p, std::uint32_t q) {
