@@ -69,15 +69,14 @@ TEST(OrganizedRim, MarksTheImageBorderHolesAndDepthJumps) {
   // farther than its neighbours (a surface behind an occluding edge).
   const std::size_t w = 6, h = 5;
   std::vector<float> range(w * h, 1.0f);
-  std::vector<std::uint32_t> pixel_vertex(w * h, kNone), vertex_pixel;
+  std::vector<std::uint32_t> vertex_pixel;
   for (std::uint32_t px = 0; px < w * h; ++px)
-    if (px != 14) {
-      pixel_vertex[px] = static_cast<std::uint32_t>(vertex_pixel.size());
+    if (px != 14)
       vertex_pixel.push_back(px);
-    }
   range[14] = std::numeric_limits<float>::quiet_NaN();
   range[10] = 1.5f;
-  const std::vector<std::uint8_t> rim = organizedRim(vertex_pixel, range, pixel_vertex, w, h);
+  const std::vector<std::uint8_t> rim = organizedRim(
+      vertex_pixel, [&](std::size_t px) { return range[px]; }, w, h);
   ASSERT_EQ(rim.size(), vertex_pixel.size());
   const std::set<std::uint32_t> inside_rim = {8, 13, 15, 20, 9, 10, 16};
   for (std::size_t v = 0; v < rim.size(); ++v) {

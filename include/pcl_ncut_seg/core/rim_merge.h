@@ -10,6 +10,7 @@
 #include <pcl_ncut_seg/core/csr_graph.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -20,11 +21,12 @@ namespace pcl_ncut_seg {
  * detection measures it).
  * \param[in] vertex_pixel  per vertex, its pixel (row * width + column)
  * \param[in] range         per pixel, the distance of its point from the sensor; NaN: no point
- * \param[in] pixel_vertex  per pixel, its vertex or kNone (no finite point, or not analysed)
+ *                          (no finite point, or not analysed). Asked only for the vertices'
+ *                          pixels and their 4-neighbours, so that a caller need not fill an
+ *                          array over the whole image.
  * \return per vertex, 1 on the rim, 0 inside */
 std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_pixel,
-                                       const std::vector<float>& range,
-                                       const std::vector<std::uint32_t>& pixel_vertex,
+                                       const std::function<float(std::size_t)>& range,
                                        std::size_t width, std::size_t height);
 
 /** \brief Merge touching segments of an open surface whose common boundary is neither a

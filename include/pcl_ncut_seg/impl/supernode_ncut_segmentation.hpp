@@ -178,20 +178,21 @@ pcl::SupernodeNCutSegmentation<PointT>::cadNormals(const pcl_ncut_seg::CsrGraph&
 
 template <typename PointT>
 std::vector<std::uint8_t> pcl::SupernodeNCutSegmentation<PointT>::organizedRim() const {
-  const std::size_t pixels = input_->size();
-  std::vector<std::uint32_t> pixel_vertex(pixels, pcl_ncut_seg::kNone);
-  for (std::size_t v = 0; v < point_index_.size(); ++v)
-    pixel_vertex[point_index_[v]] = static_cast<std::uint32_t>(v);
+  // One bit per pixel for "analysed, or a copy of an analysed point": an array of ranges over
+  // the whole image would cost more to allocate than the rim does to find.
+  std::vector<std::uint64_t> seen((input_->size() + 63) / 64, 0);
+  const auto mark = [&seen](std::size_t px) { seen[px >> 6] |= std::uint64_t(1) << (px & 63); };
+  for (const int px : point_index_)
+    mark(static_cast<std::size_t>(px));
   for (const auto& d : duplicates_)
-    pixel_vertex[d.first] = d.second;
-  std::vector<float> range(pixels, std::numeric_limits<float>::quiet_NaN());
+    mark(static_cast<std::size_t>(d.first));
   const Eigen::Vector3f origin = input_->sensor_origin_.template head<3>();
-  for (std::size_t i = 0; i < pixels; ++i)
-    if (pixel_vertex[i] != pcl_ncut_seg::kNone)
-      range[i] = ((*input_)[i].getVector3fMap() - origin).norm();
-  std::vector<std::uint32_t> vertex_pixel(point_index_.begin(), point_index_.end());
-  return pcl_ncut_seg::organizedRim(vertex_pixel, range, pixel_vertex, input_->width,
-                                    input_->height);
+  const auto range = [&](std::size_t px) {
+    return (seen[px >> 6] >> (px & 63)) & 1u ? ((*input_)[px].getVector3fMap() - origin).norm()
+                                             : std::numeric_limits<float>::quiet_NaN();
+  };
+  const std::vector<std::uint32_t> vertex_pixel(point_index_.begin(), point_index_.end());
+  return pcl_ncut_seg::organizedRim(vertex_pixel, range, input_->width, input_->height);
 }
 
 template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
