@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -39,6 +40,7 @@ struct Options {
   std::vector<std::size_t> sizes = kSizes;
   std::size_t reference = kReference;
   int threads = 1;
+  std::optional<int> max_points = pcl_ncut_seg::Parameters().graph.max_points;
 };
 
 /** Per size, over the models: the Rand index against the reference and the count's change. */
@@ -68,7 +70,8 @@ std::vector<std::string> split(const std::string& text) {
 
 int usage(const char* argv0, int code) {
   std::printf(
-      "Usage: %s [--models A,B] [--sizes N,M] [--reference N] [--threads T] [--data DIR]\n"
+      "Usage: %s [--models A,B] [--sizes N,M] [--reference N] [--threads T]\n"
+      "       [--max_points N|off] [--data DIR]\n"
       "The same surface at several densities: time, segment count and the Rand index\n"
       "against the reference size's labels (carried by nearest point), per size.\n"
       "  --models A,B   OFF files in DIR/models, without .off (default: the paper's kind:\n"
@@ -77,6 +80,8 @@ int usage(const char* argv0, int code) {
       "  --reference N  the size the others are compared with (default 50000; added to\n"
       "                 the sizes if missing)\n"
       "  --threads T    the segmenter's threads (default 1)\n"
+      "  --max_points N the analysis' resolution (setMaxPoints; default the library's,\n"
+      "                 off: every point analysed)\n"
       "  --data DIR     shared data directory with models/ (default %s)\n",
       argv0, PCL_NCUT_SEG_BENCH_DATA);
   return code;
@@ -97,7 +102,12 @@ int parse(int argc, char** argv, Options& o) {
       o.reference = std::strtoull(argv[++i], nullptr, 10);
     else if (a == "--threads" && has_value)
       o.threads = std::atoi(argv[++i]);
-    else if (a == "--data" && has_value)
+    else if (a == "--max_points" && has_value) {
+      const std::string v = argv[++i];
+      o.max_points = v == "off" ? std::nullopt : std::optional<int>(std::atoi(v.c_str()));
+      if (o.max_points && *o.max_points < 100)
+        return std::fprintf(stderr, "--max_points must be >= 100 or off\n"), 1;
+    } else if (a == "--data" && has_value)
       o.data = argv[++i];
     else
       return usage(argv[0], a == "-h" || a == "--help" ? 0 : 1);
@@ -113,7 +123,7 @@ int parse(int argc, char** argv, Options& o) {
   return -1;
 }
 
-Result segmentAt(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t n, int threads) {
+Result segmentAt(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t n, const Options& o) {
   Result r;
   r.points = n;
   r.xyz = pcl_ncut_seg::sampleSurface(mesh, n, kSeed);
@@ -125,7 +135,8 @@ Result segmentAt(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t n, int thre
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
   pcl_ncut_seg::Parameters p = seg.getParameters();
-  p.execution.num_threads = threads;
+  p.execution.num_threads = o.threads;
+  p.graph.max_points = o.max_points;
   seg.setParameters(p);
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
@@ -156,7 +167,7 @@ bool benchModel(const Options& o, const std::string& name, Stats& stats) {
   }
   std::vector<Result> results;
   for (std::size_t n : o.sizes) {
-    results.push_back(segmentAt(mesh, n, o.threads));
+    results.push_back(segmentAt(mesh, n, o));
     std::fflush(stdout);
   }
   const auto ref = std::find_if(results.begin(), results.end(),
@@ -186,9 +197,10 @@ int main(int argc, char** argv) {
                 (o.data / "models").c_str());
     return 0;
   }
-  std::printf("load %s, %d thread(s); reference %zu points; seed %llu\n",
+  std::printf("load %s, %d thread(s); reference %zu points; seed %llu; max_points %s\n",
               pcl_ncut_seg_bench::loadAverage().c_str(), o.threads, o.reference,
-              static_cast<unsigned long long>(kSeed));
+              static_cast<unsigned long long>(kSeed),
+              o.max_points ? std::to_string(*o.max_points).c_str() : "off");
   std::printf("%-15s %8s %9s %9s %5s %5s %8s\n", "model", "points", "wall s", "cpu s", "segs",
               "d ref", "RI ref");
   Stats stats;

@@ -27,6 +27,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@
 namespace {
 using pcl_ncut_seg_bench::cpuNow;
 using pcl_ncut_seg_bench::now;
+
+/// Ours' analysis resolution (--max_points; default the library's).
+std::optional<int> g_max_points = pcl_ncut_seg::Parameters().graph.max_points;
 
 /** The view's valid points, x, y, z each. */
 std::vector<float> validPoints(const pcl_ncut_seg::DepthView& view) {
@@ -104,6 +108,9 @@ Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::siz
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(pcl_ncut_seg::toPclCloud(view));
   seg.setNumberOfThreads(threads);
+  pcl_ncut_seg::Parameters p = seg.getParameters();
+  p.graph.max_points = g_max_points;
+  seg.setParameters(p);
   if (organized)
     seg.setSearchMethod(pcl::search::Search<pcl::PointXYZ>::Ptr(
         new pcl::search::OrganizedNeighbor<pcl::PointXYZ>()));
@@ -203,9 +210,16 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--data") && i + 1 < argc) {
       data = argv[++i];
+    } else if (!std::strcmp(argv[i], "--max_points") && i + 1 < argc) {
+      const std::string v = argv[++i];
+      g_max_points = v == "off" ? std::nullopt : std::optional<int>(std::atoi(v.c_str()));
+      if (g_max_points && *g_max_points < 100)
+        return std::fprintf(stderr, "--max_points must be >= 100 or off\n"), 1;
     } else {
-      std::printf("Usage: %s [--data DIR]\nTimes ours and supervoxels + LCCP on two rendered "
-                  "640 x 480 depth frames of DIR/models/bunny.off (see the source's header).\n",
+      std::printf("Usage: %s [--data DIR] [--max_points N|off]\n"
+                  "Times ours and supervoxels + LCCP on two rendered 640 x 480 depth frames of\n"
+                  "DIR/models/bunny.off (see the source's header). --max_points: ours' analysis\n"
+                  "resolution (setMaxPoints; default the library's, off: every point).\n",
                   argv[0]);
       return std::strcmp(argv[i], "-h") && std::strcmp(argv[i], "--help") ? 1 : 0;
     }
