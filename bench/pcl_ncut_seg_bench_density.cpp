@@ -6,6 +6,7 @@
  * reference size (50k), carried to each point of the size from its nearest reference point.
  * Skips (exit 0, with a message) when the shared data is absent.
  */
+#include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "eval_sampling.h"
@@ -18,7 +19,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -40,7 +40,7 @@ struct Options {
   std::vector<std::size_t> sizes = kSizes;
   std::size_t reference = kReference;
   int threads = 1;
-  std::optional<int> max_points = pcl_ncut_seg::Parameters().graph.max_points;
+  pcl_ncut_seg::Parameters params; ///< the defaults, with --max_points
 };
 
 /** Per size, over the models: the Rand index against the reference and the count's change. */
@@ -103,10 +103,9 @@ int parse(int argc, char** argv, Options& o) {
     else if (a == "--threads" && has_value)
       o.threads = std::atoi(argv[++i]);
     else if (a == "--max_points" && has_value) {
-      const std::string v = argv[++i];
-      o.max_points = v == "off" ? std::nullopt : std::optional<int>(std::atoi(v.c_str()));
-      if (o.max_points && *o.max_points < 100)
-        return std::fprintf(stderr, "--max_points must be >= 100 or off\n"), 1;
+      std::string why;
+      if (!pcl_ncut_seg::setParameter(o.params, "max_points", argv[++i], &why))
+        return std::fprintf(stderr, "%s\n", why.c_str()), 1;
     } else if (a == "--data" && has_value)
       o.data = argv[++i];
     else
@@ -134,9 +133,8 @@ Result segmentAt(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t n, const Op
   const double wall = pcl_ncut_seg_bench::now(), cpu = pcl_ncut_seg_bench::cpuNow();
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
-  pcl_ncut_seg::Parameters p = seg.getParameters();
+  pcl_ncut_seg::Parameters p = o.params;
   p.execution.num_threads = o.threads;
-  p.graph.max_points = o.max_points;
   seg.setParameters(p);
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
@@ -200,7 +198,7 @@ int main(int argc, char** argv) {
   std::printf("load %s, %d thread(s); reference %zu points; seed %llu; max_points %s\n",
               pcl_ncut_seg_bench::loadAverage().c_str(), o.threads, o.reference,
               static_cast<unsigned long long>(kSeed),
-              o.max_points ? std::to_string(*o.max_points).c_str() : "off");
+              pcl_ncut_seg::parameterValue(o.params, "max_points").c_str());
   std::printf("%-15s %8s %9s %9s %5s %5s %8s\n", "model", "points", "wall s", "cpu s", "segs",
               "d ref", "RI ref");
   Stats stats;

@@ -13,6 +13,7 @@
  * 3 cm), on the valid points. Prints the wall time of each (the median of 5 runs); skips when
  * the data is absent.
  */
+#include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "depth_view_pcl.h"
@@ -27,7 +28,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -38,8 +38,8 @@ namespace {
 using pcl_ncut_seg_bench::cpuNow;
 using pcl_ncut_seg_bench::now;
 
-/// Ours' analysis resolution (--max_points; default the library's).
-std::optional<int> g_max_points = pcl_ncut_seg::Parameters().graph.max_points;
+/// Ours' parameters: the defaults, with --max_points.
+pcl_ncut_seg::Parameters g_params;
 
 /** The view's valid points, x, y, z each. */
 std::vector<float> validPoints(const pcl_ncut_seg::DepthView& view) {
@@ -107,10 +107,8 @@ Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::siz
                  pcl_ncut_seg::PhaseTimes* phases = nullptr, bool organized = false) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(pcl_ncut_seg::toPclCloud(view));
+  seg.setParameters(g_params);
   seg.setNumberOfThreads(threads);
-  pcl_ncut_seg::Parameters p = seg.getParameters();
-  p.graph.max_points = g_max_points;
-  seg.setParameters(p);
   if (organized)
     seg.setSearchMethod(pcl::search::Search<pcl::PointXYZ>::Ptr(
         new pcl::search::OrganizedNeighbor<pcl::PointXYZ>()));
@@ -211,10 +209,9 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--data") && i + 1 < argc) {
       data = argv[++i];
     } else if (!std::strcmp(argv[i], "--max_points") && i + 1 < argc) {
-      const std::string v = argv[++i];
-      g_max_points = v == "off" ? std::nullopt : std::optional<int>(std::atoi(v.c_str()));
-      if (g_max_points && *g_max_points < 100)
-        return std::fprintf(stderr, "--max_points must be >= 100 or off\n"), 1;
+      std::string why;
+      if (!pcl_ncut_seg::setParameter(g_params, "max_points", argv[++i], &why))
+        return std::fprintf(stderr, "%s\n", why.c_str()), 1;
     } else {
       std::printf("Usage: %s [--data DIR] [--max_points N|off]\n"
                   "Times ours and supervoxels + LCCP on two rendered 640 x 480 depth frames of\n"
@@ -235,8 +232,9 @@ int main(int argc, char** argv) {
   const pcl_ncut_seg::DepthView object = objectView(mesh, 20000);
   const pcl_ncut_seg::DepthView frame = tableView(mesh);
   const unsigned cores = std::max(1u, static_cast<unsigned>(sysconf(_SC_NPROCESSORS_ONLN)));
-  std::printf("pcl_ncut_seg_bench_views: 640 x 480 frames, load average %s\n",
-              pcl_ncut_seg_bench::loadAverage().c_str());
+  std::printf("pcl_ncut_seg_bench_views: 640 x 480 frames, load average %s, max_points %s\n",
+              pcl_ncut_seg_bench::loadAverage().c_str(),
+              pcl_ncut_seg::parameterValue(g_params, "max_points").c_str());
   std::printf("%-34s %7s  %13s  %10s  %13s  %s\n", "cloud", "points", "ours 1 thread", "ours all",
               "LCCP", "segments ours / LCCP");
   const auto& o = object.pose.origin; // the object's centre is the origin
