@@ -173,7 +173,7 @@ template <typename Run> Seconds medianRun(Run run) {
 void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
   std::size_t ours_segments = 0, all_segments = 0, lccp_segments = 0, grid_segments = 0;
   // The phases of the run of median wall time.
-  std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>> one_phases, grid_phases;
+  std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>> one_phases, all_phases, grid_phases;
   const auto phasesOf = [](std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>>& all) {
     std::sort(all.begin(), all.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -185,7 +185,12 @@ void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cor
     one_phases.emplace_back(s.wall, t);
     return s;
   });
-  const Seconds all = medianRun([&] { return timeOurs(view, 0, &all_segments); });
+  const Seconds all = medianRun([&] {
+    pcl_ncut_seg::PhaseTimes t;
+    const Seconds s = timeOurs(view, 0, &all_segments, &t);
+    all_phases.emplace_back(s.wall, t);
+    return s;
+  });
   const Seconds lccp = medianRun([&] { return timeLccp(view, &lccp_segments); });
   medianRun([&] {
     pcl_ncut_seg::PhaseTimes t;
@@ -198,6 +203,7 @@ void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cor
               view.validPixels(), one.wall, one.cpu, all.wall, cores, lccp.wall, lccp.cpu,
               ours_segments, lccp_segments);
   printPhases("ours, 1 thread:", phases, ours_segments);
+  printPhases("ours, all cores:", phasesOf(all_phases), all_segments);
   printPhases("ours, OrganizedNeighbor search:", phasesOf(grid_phases), grid_segments);
 }
 
