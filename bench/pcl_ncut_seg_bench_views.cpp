@@ -150,7 +150,7 @@ Seconds timeLccp(const pcl_ncut_seg::DepthView& view, std::size_t* segments) {
   return secs;
 }
 
-/** Ours' phases on one thread (Table 1's columns), wall seconds. */
+/** Ours' phases (Table 1's columns), wall seconds. */
 void printPhases(const char* name, const pcl_ncut_seg::PhaseTimes& t, std::size_t segments) {
   std::printf("  %-32s kNN %5.3f  Cen %5.3f  Snod %5.3f  LRef %5.3f  HSeg %5.3f  PSeg %5.3f  "
               "(%zu segments)\n",
@@ -252,9 +252,9 @@ int main(int argc, char** argv) {
   std::printf("Seconds, wall / CPU, of the run of median wall time among %d (ours on all n\n"
               "cores: wall). Ours with the defaults on the organized cloud; LCCP: PCL's normals,\n"
               "supervoxels (7.5 mm voxels, 3 cm seeds) and LCCP on the valid points (one thread).\n"
-              "Segments: distinct labels. Below each cloud, ours' phases on one thread (wall\n"
-              "seconds), with the default kd-tree and with pcl::search::OrganizedNeighbor given\n"
-              "to setSearchMethod().\n",
+              "Segments: distinct labels. Below each cloud, ours' phases (wall seconds) on one\n"
+              "thread and on all cores with the default kd-tree, and on one thread with\n"
+              "pcl::search::OrganizedNeighbor given to setSearchMethod().\n",
               kRuns);
   return 0;
 }
