@@ -170,41 +170,38 @@ template <typename Run> Seconds medianRun(Run run) {
   return runs[kRuns / 2];
 }
 
+/** Ours, kRuns times: the run of median wall time, and its segments and phases. */
+struct OursRun {
+  Seconds time;
+  std::size_t segments = 0;
+  pcl_ncut_seg::PhaseTimes phases;
+};
+OursRun medianOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, bool organized) {
+  std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>> runs;
+  OursRun r;
+  r.time = medianRun([&] {
+    pcl_ncut_seg::PhaseTimes t;
+    const Seconds s = timeOurs(view, threads, &r.segments, &t, organized);
+    runs.emplace_back(s.wall, t);
+    return s;
+  });
+  std::sort(runs.begin(), runs.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  r.phases = runs[runs.size() / 2].second;
+  return r;
+}
+
 void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
-  std::size_t ours_segments = 0, all_segments = 0, lccp_segments = 0, grid_segments = 0;
-  // The phases of the run of median wall time.
-  std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>> one_phases, all_phases, grid_phases;
-  const auto phasesOf = [](std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>>& all) {
-    std::sort(all.begin(), all.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    return all[all.size() / 2].second;
-  };
-  const Seconds one = medianRun([&] {
-    pcl_ncut_seg::PhaseTimes t;
-    const Seconds s = timeOurs(view, 1, &ours_segments, &t);
-    one_phases.emplace_back(s.wall, t);
-    return s;
-  });
-  const Seconds all = medianRun([&] {
-    pcl_ncut_seg::PhaseTimes t;
-    const Seconds s = timeOurs(view, 0, &all_segments, &t);
-    all_phases.emplace_back(s.wall, t);
-    return s;
-  });
+  const OursRun one = medianOurs(view, 1, false), all = medianOurs(view, 0, false);
+  std::size_t lccp_segments = 0;
   const Seconds lccp = medianRun([&] { return timeLccp(view, &lccp_segments); });
-  medianRun([&] {
-    pcl_ncut_seg::PhaseTimes t;
-    const Seconds s = timeOurs(view, 1, &grid_segments, &t, true);
-    grid_phases.emplace_back(s.wall, t);
-    return s;
-  });
-  const pcl_ncut_seg::PhaseTimes phases = phasesOf(one_phases);
+  const OursRun grid = medianOurs(view, 1, true);
   std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name,
-              view.validPixels(), one.wall, one.cpu, all.wall, cores, lccp.wall, lccp.cpu,
-              ours_segments, lccp_segments);
-  printPhases("ours, 1 thread:", phases, ours_segments);
-  printPhases("ours, all cores:", phasesOf(all_phases), all_segments);
-  printPhases("ours, OrganizedNeighbor search:", phasesOf(grid_phases), grid_segments);
+              view.validPixels(), one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall,
+              lccp.cpu, one.segments, lccp_segments);
+  printPhases("ours, 1 thread:", one.phases, one.segments);
+  printPhases("ours, all cores:", all.phases, all.segments);
+  printPhases("ours, OrganizedNeighbor search:", grid.phases, grid.segments);
 }
 
 } // namespace
