@@ -14,6 +14,7 @@ using namespace pcl_ncut_seg::tool;
 
 const std::vector<std::string> kAllMethods = {"ours", "lccp", "cpc", "one", "octants", "human"};
 const std::vector<std::string> kAllModes = {"auto", "given"};
+const std::vector<std::string> kViewForms = {"view", "crop", "voxel", "laser"};
 
 namespace {
 
@@ -133,6 +134,32 @@ std::vector<Flag> viewFlags() {
       realFlag("-range_noise", "SIGMA",
                "the views' range noise in metres at 1 m; it grows with the depth squared (0: none)",
                numberText(cam.noise_at_1m), 0, 0.1),
+      textFlag("-view_forms", "LIST",
+               "of view,crop,voxel,laser: how a view reaches the segmenters, each its own mode: "
+               "the organized frame; its valid points (unorganized, NaN-free, as a tabletop "
+               "pipeline hands an object over); that crop on a voxel grid of 1% of its "
+               "bounding-box diagonal (pcl::VoxelGrid); or as many points as the crop, drawn "
+               "uniformly by area on the faces the camera sees, with isotropic noise of 0.002 "
+               "diagonals (a laser scanner)",
+               "view"),
+      textFlag("-view_origin", "known|unknown",
+               "the sensor's pose in the clouds (unknown: sensor_origin_ left at 0, the object's "
+               "centre, and LCCP's and CPC's normals oriented away from the points' centroid)",
+               "known"),
+      intFlag("-peer_min_segment", "N",
+              "views: LCCP's and CPC's smallest segment, in supervoxels (smaller ones merge)",
+              std::to_string(PeerParams{}.min_segment_size), 0, 1000),
+      realFlag("-peer_seed", "F", "views: LCCP's and CPC's seed resolution, F crop diagonals",
+               numberText(PeerParams{}.seed_fraction), 1e-4, 1),
+  };
+  rows[3].check = [](const std::string& t, std::string* why) {
+    std::vector<std::string> items;
+    return parseWords(t, kViewForms, items, why);
+  };
+  rows[4].check = [](const std::string& t, std::string* why) {
+    if (t != "known" && t != "unknown")
+      *why = "expected known or unknown";
+    return why->empty();
   };
   rows[1].check = [](const std::string& t, std::string* why) {
     int w = 0, h = 0;
@@ -146,7 +173,8 @@ std::vector<Flag> viewFlags() {
 /** The view settings; a failure for the flags that the view mode does not take. */
 void readViewOptions(const Flags& flags, Options& o) {
   const bool views = flags.has("-views");
-  for (const char* name : {"-resolution", "-range_noise"})
+  for (const char* name : {"-resolution", "-range_noise", "-view_forms", "-view_origin",
+                           "-peer_min_segment", "-peer_seed"})
     if (flags.has(name) && !views)
       throw Failure(std::string(name) + " needs -views");
   if (!views)
@@ -163,7 +191,41 @@ void readViewOptions(const Flags& flags, Options& o) {
     pcl_ncut_seg::parseResolution(flags.text("-resolution"), o.camera.width, o.camera.height);
   if (flags.has("-range_noise"))
     o.camera.noise_at_1m = flags.real("-range_noise");
-  o.modes = {"view"};
+  std::string why;
+  if (flags.has("-view_forms"))
+    parseWords(flags.text("-view_forms"), kViewForms, o.view_forms, &why);
+  o.view_origin_known = !flags.has("-view_origin") || flags.text("-view_origin") == "known";
+  o.modes = o.view_forms;
+}
+
+/** LCCP's and CPC's settings (psb_peers.h), scaled to the points' bounding-box diagonal. */
+std::vector<Flag> peerFlags() {
+  const PeerParams p;
+  return {
+      intFlag("-peer_min_segment", "N",
+              "LCCP's and CPC's smallest segment, in supervoxels (smaller ones merge into a "
+              "neighbour; 0: none)",
+              std::to_string(p.min_segment_size), 0, 1000),
+      realFlag("-peer_seed", "F", "LCCP's and CPC's supervoxel seed resolution, F diagonals",
+               numberText(p.seed_fraction), 1e-4, 1),
+      realFlag("-peer_voxel", "F", "LCCP's and CPC's voxel resolution, F diagonals",
+               numberText(p.voxel_fraction), 1e-4, 1),
+      realFlag("-peer_concavity", "DEG", "LCCP's and CPC's concavity tolerance in degrees",
+               numberText(p.concavity_tolerance), 0, 90),
+  };
+}
+
+void readPeerOptions(const Flags& flags, Options& o) {
+  if (flags.has("-peer_min_segment"))
+    o.peers.min_segment_size = static_cast<unsigned>(flags.integer("-peer_min_segment"));
+  if (flags.has("-peer_seed"))
+    o.peers.seed_fraction = flags.real("-peer_seed");
+  if (flags.has("-peer_voxel"))
+    o.peers.voxel_fraction = flags.real("-peer_voxel");
+  if (flags.has("-peer_concavity"))
+    o.peers.concavity_tolerance = static_cast<float>(flags.real("-peer_concavity"));
+  if (o.peers.voxel_fraction >= o.peers.seed_fraction)
+    throw Failure("-peer_voxel must be smaller than -peer_seed");
 }
 
 /** The sampling conditions: the points each model is segmented as, instead of its centroids. */
@@ -241,6 +303,7 @@ std::vector<Flag> evalFlags() {
   append(table, runFlags(), "evaluation");
   append(table, viewFlags(), "views (57 degrees across, the model scaled to 0.3 m, 1 m away)");
   append(table, samplingFlags(), "sampling conditions");
+  append(table, peerFlags(), "LCCP and CPC (every input)");
   append(table, algorithmFlags(evalDefaults()));
   append(table, commonFlags());
   return table;
@@ -289,6 +352,7 @@ Options readOptions(const Flags& flags) {
   o.sampling = readSampling(flags);
   o.quiet = flags.has("-quiet");
   readViewOptions(flags, o);
+  readPeerOptions(flags, o);
   return o;
 }
 

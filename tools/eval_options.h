@@ -8,6 +8,7 @@
 #include "cli/flags.h"
 #include "depth_view.h"
 #include "eval_sampling.h"
+#include "psb_peers.h"
 
 #include <pcl_ncut_seg/parameters.h>
 
@@ -27,6 +28,8 @@ struct Failure : std::runtime_error {
 /** The methods and the modes of -methods and -modes. */
 extern const std::vector<std::string> kAllMethods;
 extern const std::vector<std::string> kAllModes;
+/** The forms of a view of -view_forms, as their modes are called in the reports. */
+extern const std::vector<std::string> kViewForms;
 
 /** Every flag of the evaluator. */
 std::vector<tool::Flag> evalFlags();
@@ -43,7 +46,12 @@ struct Options {
   std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
   SamplingOptions sampling;       ///< the points of each model; default: the face centroids
   bool quiet = false;
-  int views = 0;                       ///< depth-camera views per model; 0: the whole objects
+  int views = 0; ///< depth-camera views per model; 0: the whole objects
+  /// How each view reaches the segmenters (-view_forms): modes "view" (the organized frame),
+  /// "crop", "voxel", "laser" (eval_views.h).
+  std::vector<std::string> view_forms = {"view"};
+  bool view_origin_known = true;       ///< false: sensor_origin_ left at 0 (-view_origin unknown)
+  pcl_ncut_seg::PeerParams peers;      ///< LCCP's and CPC's settings (-peer_*)
   pcl_ncut_seg::CameraSettings camera; ///< the views' camera (-resolution, -range_noise)
   pcl_ncut_seg::Parameters params;     ///< -paper or the defaults, and the algorithm flags
 

@@ -23,6 +23,10 @@ double metricValue(const SegmentationScores& s, int k) {
   return v[k];
 }
 
+bool isViewMode(const std::string& mode) {
+  return mode == "view" || mode == "crop" || mode == "voxel" || mode == "laser";
+}
+
 namespace {
 
 /// The metrics, then (view mode only) the segments and seconds per view.
@@ -96,14 +100,23 @@ std::string modeTitle(const std::string& mode, bool long_form) {
   if (mode == "auto")
     return long_form ? "Automatic mode" : "Automatic";
   if (mode == "view")
-    return long_form ? "Depth-camera views, on the faces each view sees" : "Views";
+    return long_form ? "Depth-camera views (organized frames), on the faces each view sees"
+                     : "Views";
+  if (mode == "crop")
+    return long_form ? "Views cropped to their valid points (unorganized), on the faces seen"
+                     : "Crops";
+  if (mode == "voxel")
+    return long_form ? "Cropped views on a voxel grid (1% of the crop's diagonal)" : "Voxel crops";
+  if (mode == "laser")
+    return long_form ? "Laser-like views (even samples of the seen faces, isotropic noise)"
+                     : "Laser views";
   return long_form ? "Given number of segments" : "Given count";
 }
 
 /** One mode's overall table. */
 void overallTable(const Report& report, const Means& all, const std::string& mode,
                   std::ostringstream& md) {
-  const bool view = mode == "view";
+  const bool view = isViewMode(mode);
   md << "\n### " << modeTitle(mode, true) << ": overall (" << report.ids.size() << " models)\n\n";
   md << "| method | 1 - RI | Hamming | Rm | Rf | GCE | LCE | segments"
      << (view ? " / view | s / view" : " | s / model") << " |\n";
@@ -192,7 +205,7 @@ std::string tablesMarkdown(const Report& report) {
   md << "<!-- written by pcl_ncut_seg_eval -->\n";
   for (const auto& mode : report.modes) {
     overallTable(report, all, mode, md);
-    for (int k = 0; k < (mode == "view" ? 8 : 6); ++k)
+    for (int k = 0; k < (isViewMode(mode) ? 8 : 6); ++k)
       categoryTable(report, all, mode, k, md);
   }
   return md.str();
@@ -210,7 +223,7 @@ std::string summary(const Report& report) {
       out << mode << " " << method << ": 1-RI " << fixed(m.scores.rand_index_error) << " Hamming "
           << fixed(m.scores.hamming) << " GCE " << fixed(m.scores.gce) << " LCE "
           << fixed(m.scores.lce) << " segments " << fixed(m.segments, 1)
-          << (mode == "view" ? " s/view " : " s/model ") << fixed(m.seconds, 2) << "\n";
+          << (isViewMode(mode) ? " s/view " : " s/model ") << fixed(m.seconds, 2) << "\n";
     }
   return out.str();
 }

@@ -51,6 +51,9 @@ std::string modelResults(const Report& report, int id);
 extern const char* const kMetricNames[6];
 double metricValue(const SegmentationScores& s, int k);
 
+/** \brief A mode of the view mode (-views): "view", "crop", "voxel" or "laser". */
+bool isViewMode(const std::string& mode);
+
 /** \brief Fixed-point text with this many digits. */
 std::string fixed(double v, int digits = 3);
 

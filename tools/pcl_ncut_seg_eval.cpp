@@ -284,7 +284,7 @@ void scorePeers(const Model& m, const Draw& d, const Options& opt, Report& repor
     // CPC reports every failed RANSAC draw as an error; they are part of how it works.
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
     const bool ok = pcl_ncut_seg::segmentWithPclPeer(d.cloud.xyz, std::string(peer) == "cpc",
-                                                     pcl_ncut_seg::PeerParams(), labels, &error);
+                                                     opt.peers, labels, &error);
     pcl::console::setVerbosityLevel(pcl::console::L_WARN);
     if (!ok)
       throw Failure(std::string(peer) + " on model " + m.name + ": " + error);
