@@ -146,11 +146,6 @@ std::vector<Flag> viewFlags() {
                "the sensor's pose in the clouds (unknown: sensor_origin_ left at 0, the object's "
                "centre, and LCCP's and CPC's normals oriented away from the points' centroid)",
                "known"),
-      intFlag("-peer_min_segment", "N",
-              "views: LCCP's and CPC's smallest segment, in supervoxels (smaller ones merge)",
-              std::to_string(PeerParams{}.min_segment_size), 0, 1000),
-      realFlag("-peer_seed", "F", "views: LCCP's and CPC's seed resolution, F crop diagonals",
-               numberText(PeerParams{}.seed_fraction), 1e-4, 1),
   };
   rows[3].check = [](const std::string& t, std::string* why) {
     std::vector<std::string> items;
@@ -173,8 +168,7 @@ std::vector<Flag> viewFlags() {
 /** The view settings; a failure for the flags that the view mode does not take. */
 void readViewOptions(const Flags& flags, Options& o) {
   const bool views = flags.has("-views");
-  for (const char* name : {"-resolution", "-range_noise", "-view_forms", "-view_origin",
-                           "-peer_min_segment", "-peer_seed"})
+  for (const char* name : {"-resolution", "-range_noise", "-view_forms", "-view_origin"})
     if (flags.has(name) && !views)
       throw Failure(std::string(name) + " needs -views");
   if (!views)
