@@ -12,7 +12,8 @@ namespace eval {
 
 using namespace pcl_ncut_seg::tool;
 
-const std::vector<std::string> kAllMethods = {"ours", "lccp", "cpc", "one", "octants", "human"};
+const std::vector<std::string> kAllMethods = {"ours", "whole",   "lccp", "cpc",
+                                              "one",  "octants", "human"};
 const std::vector<std::string> kAllModes = {"auto", "given"};
 const std::vector<std::string> kViewForms = {"view", "crop", "voxel", "laser"};
 
@@ -83,7 +84,10 @@ bool parseNumbers(const std::string& text, double lo, double hi, std::vector<dou
 /** The evaluator's own flags: what to run, on which models, and the sweeps of 'ours'. */
 std::vector<Flag> runFlags() {
   std::vector<Flag> rows = {
-      textFlag("-methods", "LIST", "of ours,lccp,cpc,one,octants,human", "all"),
+      textFlag("-methods", "LIST",
+               "of ours,whole,lccp,cpc,one,octants,human (whole: with -views, 'ours whole', ours "
+               "on the whole object scored on the faces each view sees)",
+               "all"),
       textFlag("-modes", "LIST",
                "of auto,given: the segmenter chooses the number of segments, or gets "
                "nSeg-ByModel.txt's",

@@ -304,7 +304,7 @@ void scoreView(const Model& m, const Options& opt, const ScoredView& s,
                const std::vector<int>& whole, double whole_seconds, ModelSums& sums) {
   for (const std::string& form : opt.view_forms) {
     scoreForm(m, opt, s, form, sums);
-    if (opt.has("ours")) {
+    if (opt.has("whole")) {
       const std::vector<int> seen = restrictToFaces(whole, s.seen);
       sums.add("ours whole\t" + form, againstHumans(seen, s.humans, s.area),
                static_cast<double>(countSegments(seen)), whole_seconds);
@@ -324,7 +324,7 @@ void scoreView(const Model& m, const Options& opt, const ScoredView& s,
 double scoreViews(const Model& m, const Options& opt, Report& report) {
   double whole_seconds = 0;
   std::vector<int> whole;
-  if (opt.has("ours"))
+  if (opt.has("whole"))
     whole = oursOnWhole(m, opt, &whole_seconds);
   ModelSums sums;
   const std::vector<float> centroids = faceCentroids(m.mesh);

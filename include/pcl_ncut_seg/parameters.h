@@ -79,6 +79,12 @@ struct GraphParams {
   /// many of its points (one per cube of a grid), and every other point takes the segment of its
   /// nearest analysed point. Off: every point.
   std::optional<int> max_points = 60000;
+  /// Extension (core/rim_merge.h): an organized cloud (a depth image) is an open view whose
+  /// rim is where the image's depth jumps or its points end. Off: a surface without a rim.
+  bool organized_rim = true;
+  /// Extension (core/single_view.h): an unorganized cloud that is one view from its sensor
+  /// origin is an open view with the rim the test finds. Off: a surface without a rim.
+  bool single_view = true;
 };
 
 /** \brief Sec. 4.1: the centrality f of eq. (1). */

@@ -50,6 +50,17 @@ void graphRows(Rows& t) {
           "every other point takes the segment of its nearest analysed point",
           false),
       atLeast(100), FIELD(graph.max_points), "off"));
+  t.push_back(boolean(row("organized_rim", "graph.organized_rim", S::Graph, K::Boolean, "on|off",
+                          "open views: an organized cloud (a depth image) is a view whose rim is "
+                          "where its depth jumps or its points end; not in CAD mode",
+                          false),
+                      FIELD(graph.organized_rim)));
+  t.push_back(boolean(row("single_view", "graph.single_view", S::Graph, K::Boolean, "on|off",
+                          "open views: an unorganized cloud that is one view from its sensor "
+                          "origin is a view, its rim where the surface leaves the sensor's sight; "
+                          "not in CAD mode",
+                          false),
+                      FIELD(graph.single_view)));
 }
 
 /// Centrality (Sec. 4.1)

@@ -33,6 +33,8 @@ Parameters Parameters::paper() {
   p.graph.denoise.reset();
   p.graph.irregular_sampling.reset();
   p.graph.max_points.reset();
+  p.graph.organized_rim = false;
+  p.graph.single_view = false;
   p.centrality.mode = CentralityMode::Exact;
   p.centrality.starts = 1;
   p.refinement.crease_split.reset();

@@ -153,7 +153,7 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                               !params.cad.enabled, params.execution.num_threads, &noise);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
-  if (!params.cad.enabled && points.rim.empty() && points.sensor_origin)
+  if (!params.cad.enabled && params.graph.single_view && points.rim.empty() && points.sensor_origin)
     points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
                                params.execution.num_threads);
   // Ties and the sampling's start by distance from the centroid of each connected component:

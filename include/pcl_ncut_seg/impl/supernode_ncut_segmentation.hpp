@@ -226,7 +226,7 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   // decides how the view is analysed (one start, f without the noise's mean), which the cut
   // parameters must not change.
   const bool organized = input_->isOrganized() && input_->width > 2 && input_->height > 2;
-  if (!params_.cad.enabled && organized)
+  if (!params_.cad.enabled && organized && params_.graph.organized_rim)
     prepared.set.rim = organizedRim();
   if (!params_.cad.enabled) { // a view's normals face it; is a list one view from it?
     std::array<float, 3> origin;

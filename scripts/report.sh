@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# One report of the segmenter on every kind of input the evaluator has, on the benchmark's dev
+# split: face centroids, area-uniform samples, noisy samples, a density gradient, and single
+# views in each form a pipeline hands over (organized frame, crop, voxel-grid crop, laser-like
+# samples), with the sensor origin known and unknown. Writes OUT/<config>/<input>/ (the
+# evaluator's files) and, with scripts/report.py, results/report.md.
+#
+#   bash scripts/report.sh OUT CONFIG [evaluator flags for 'ours' ...]
+#
+# CONFIG names the run: "defaults" (ours with the given flags, and on views ours on the whole
+# object too), "peers" (LCCP and CPC at the
+# settings below, and the people against each other), or any name, e.g. "off-concavity" with
+# "-concavity off". Environment: DATA (the dev split, default ../shared/data/psb-dev), EVAL (the
+# evaluator, default build/tools/pcl_ncut_seg_eval), DRAWS (draws of the uniform samples,
+# default 3), NOISY_DRAWS (of the noisy and graded samples, default 1), SAMPLES (default 20000),
+# VIEWS (views per model, default 4), JOBS (evaluator runs at a time, default 2), INPUTS (a
+# space-separated subset of the inputs below).
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if [ "$#" -lt 2 ]; then
+  echo "usage: bash scripts/report.sh OUT CONFIG [evaluator flags]" >&2
+  exit 1
+fi
+OUT="$1"
+CONFIG="$2"
+shift 2
+DATA="${DATA:-$ROOT/../shared/data/psb-dev}"
+EVAL="${EVAL:-$ROOT/build/tools/pcl_ncut_seg_eval}"
+DRAWS="${DRAWS:-3}"
+NOISY_DRAWS="${NOISY_DRAWS:-1}"
+SAMPLES="${SAMPLES:-20000}"
+VIEWS="${VIEWS:-4}"
+JOBS="${JOBS:-2}"
+ALL_INPUTS="centroids samples noise_0.5 noise_1.0 density views views_unknown_origin"
+INPUTS="${INPUTS:-$ALL_INPUTS}"
+[ -d "$DATA/off" ] || { echo "report.sh: no benchmark data at $DATA" >&2; exit 1; }
+[ -x "$EVAL" ] || { echo "report.sh: no evaluator at $EVAL (build it first)" >&2; exit 1; }
+
+# LCCP's and CPC's settings, tuned on the dev split (scripts/tune_peers.sh; results/peers.md).
+PEERS_WHOLE=(-peer_min_segment 3 -peer_seed 0.1)
+PEERS_VIEWS=(-peer_min_segment 3 -peer_seed 0.1)
+
+if [ "$CONFIG" = peers ]; then
+  METHODS=(-methods lccp,cpc,human)
+elif [ "$CONFIG" = defaults ]; then
+  METHODS=(-methods ours,whole)
+else
+  METHODS=(-methods ours)
+fi
+
+flags_of() {
+  local whole=(-modes auto) views=(-views "$VIEWS" -view_forms view,crop,voxel,laser)
+  local samples=(-samples "$SAMPLES")
+  if [ "$CONFIG" = peers ]; then
+    whole+=("${PEERS_WHOLE[@]}")
+    views+=("${PEERS_VIEWS[@]}")
+  fi
+  case "$1" in
+  centroids) echo "${whole[*]}" ;;
+  samples) echo "${whole[*]} ${samples[*]} -draws $DRAWS" ;;
+  noise_0.5) echo "${whole[*]} ${samples[*]} -draws $NOISY_DRAWS -noise 0.5" ;;
+  noise_1.0) echo "${whole[*]} ${samples[*]} -draws $NOISY_DRAWS -noise 1.0" ;;
+  density) echo "${whole[*]} ${samples[*]} -draws $NOISY_DRAWS -density_ratio 4" ;;
+  views) echo "${views[*]}" ;;
+  views_unknown_origin) echo "${views[*]} -view_origin unknown" ;;
+  *)
+    echo "report.sh: unknown input '$1' (of $ALL_INPUTS)" >&2
+    return 1
+    ;;
+  esac
+}
+
+mkdir -p "$OUT/$CONFIG"
+for input in $INPUTS; do
+  input_flags="$(flags_of "$input")"
+  dir="$OUT/$CONFIG/$input"
+  mkdir -p "$dir"
+  # shellcheck disable=SC2086  # the input's flags are words
+  echo "$EVAL $DATA $dir -quiet ${METHODS[*]} $input_flags $*" >"$dir/command"
+  rm -f "$dir/models.csv"
+  "$EVAL" "$DATA" "$dir" -quiet "${METHODS[@]}" $input_flags "$@" >"$dir/log" 2>&1 &
+  while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do
+    wait -n || true
+  done
+done
+wait || true
+status=0
+for input in $INPUTS; do
+  if [ ! -s "$OUT/$CONFIG/$input/models.csv" ]; then
+    echo "report.sh: $CONFIG/$input failed: $(tail -n 1 "$OUT/$CONFIG/$input/log")" >&2
+    status=1
+  fi
+done
+exit "$status"
