@@ -134,6 +134,32 @@ TEST_F(EvalTool, ScoresDepthViewsOnTheFacesTheySee) {
   EXPECT_NE(text.str().find("s / view"), std::string::npos);
 }
 
+TEST_F(EvalTool, ScoresEveryFormOfAView) {
+  const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
+                           " -views 2 -resolution 96x72 -view_forms view,crop,voxel,laser "
+                           "-view_origin unknown -methods ours,whole,lccp,one -quiet";
+  ASSERT_EQ(run(args), 0) << stderrText();
+  const auto rows = models();
+  ASSERT_EQ(rows.size(), 16u); // four methods, four forms
+  for (const char* form : {"view", "crop", "voxel", "laser"})
+    for (const char* method : {"ours", "ours whole", "lccp", "one"}) {
+      const auto& r = rows.at("\"" + std::string(method) + "\"," + form);
+      // Every form is scored on the faces the camera sees: one to three of the cube's six.
+      EXPECT_EQ(r[4], rows.at("\"one\",view")[4]) << method << " " << form;
+      for (int c = 7; c <= 12; ++c) {
+        EXPECT_GE(std::stod(r[c]), 0) << method << " " << form;
+        EXPECT_LE(std::stod(r[c]), 1) << method << " " << form;
+      }
+    }
+  // A crop holds the frame's valid points: 'one' scores the same on both.
+  EXPECT_EQ(rows.at("\"one\",crop")[7], rows.at("\"one\",view")[7]);
+  std::ifstream md(dir_ / "out" / "tables.md");
+  std::stringstream text;
+  text << md.rdbuf();
+  for (const char* title : {"Views cropped", "voxel grid", "Laser-like"})
+    EXPECT_NE(text.str().find(title), std::string::npos) << title;
+}
+
 TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
   const std::string psb = (dir_ / "psb").string(), out = (dir_ / "out").string();
   for (const std::string& args : {psb,
@@ -160,6 +186,10 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
                                   psb + " " + out + " -views 1 -range_noise -1",
                                   psb + " " + out + " -views 1 -resolution 4x4",
                                   psb + " " + out + " -views 1 -samples 100",
+                                  psb + " " + out + " -views 1 -view_forms view,bogus",
+                                  psb + " " + out + " -views 1 -view_origin maybe",
+                                  psb + " " + out + " -view_forms crop",
+                                  psb + " " + out + " -peer_voxel 0.2 -peer_seed 0.1",
                                   psb + " " + out + " -noise 1",
                                   psb + " " + out + " -draws 2",
                                   psb + " " + out + " -samples 10 -permute",
