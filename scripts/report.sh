@@ -72,6 +72,7 @@ flags_of() {
 }
 
 mkdir -p "$OUT/$CONFIG"
+running=0
 for input in $INPUTS; do
   input_flags="$(flags_of "$input")"
   dir="$OUT/$CONFIG/$input"
@@ -80,9 +81,11 @@ for input in $INPUTS; do
   echo "$EVAL $DATA $dir -quiet ${METHODS[*]} $input_flags $*" >"$dir/command"
   rm -f "$dir/models.csv"
   "$EVAL" "$DATA" "$dir" -quiet "${METHODS[@]}" $input_flags "$@" >"$dir/log" 2>&1 &
-  while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do
+  running=$((running + 1))
+  if [ "$running" -ge "$JOBS" ]; then
     wait -n || true
-  done
+    running=$((running - 1))
+  fi
 done
 wait || true
 status=0
