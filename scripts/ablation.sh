@@ -6,7 +6,7 @@
 #
 #   bash scripts/ablation.sh OUT [stage ...]
 #
-# Environment: as scripts/report.sh; its defaults here are DRAWS=1 and VIEWS=2, and the inputs
+# Environment: as scripts/report.sh, and SKIP_BASE=1 to keep an earlier OUT/base; its defaults here are DRAWS=1 and VIEWS=2, and the inputs
 # leave out the samples with noise of 0.5 spacings (the same kind of input as 1.0). The
 # stages run by default are those that change labels; fast_centrality (a speed stage, within
 # 1-2% of the exact f) is measured only when named.
@@ -47,8 +47,10 @@ stages=("$@")
 [ "${#stages[@]}" -gt 0 ] || read -r -a stages <<<"$(echo $ORDER)"
 status=0
 # The baseline at the same draws and views: every stage at its default.
-echo "ablation.sh: the defaults ($WHOLE)"
-INPUTS="$WHOLE" bash "$ROOT/scripts/report.sh" "$OUT" base || status=1
+if [ -z "${SKIP_BASE:-}" ]; then
+  echo "ablation.sh: the defaults ($WHOLE)"
+  INPUTS="$WHOLE" bash "$ROOT/scripts/report.sh" "$OUT" base || status=1
+fi
 for stage in "${stages[@]}"; do
   [ -n "${OFF[$stage]:-}" ] || { echo "ablation.sh: unknown stage '$stage'" >&2; exit 1; }
   inputs="$WHOLE"

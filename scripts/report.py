@@ -195,49 +195,66 @@ def category_tables(runs, categories, md):
         md.append("")
 
 
+def stage_deltas(runs, ids_by, off):
+    """Per input: (label, [(d RI, d Hamming) per half], base means, off means)."""
+    out = []
+    for folder, mode, label in INPUTS:
+        base = runs.get(("base", folder, mode, "ours"))
+        other = runs.get((off, folder, mode, "ours"))
+        if not base or not other:
+            continue
+        halves = [[i for i in ids_by[h] if i in other] for h in HALVES]
+        d = []
+        for ids in halves:
+            mb, _ = means(base, ids)
+            mo, _ = means(other, ids)
+            d.append((mo[0] - mb[0], mo[1] - mb[1]))
+        mb, _ = means(base, halves[0] + halves[1])
+        mo, _ = means(other, halves[0] + halves[1])
+        out.append((label, d, mb, mo))
+    return out
+
+
+def verdict(deltas):
+    """(inputs where the stage pays, inputs where it costs)."""
+    pays, costs = [], []
+    for label, d, _, _ in deltas:
+        if any(x <= -NOISE for h in d for x in h):
+            costs.append(label)
+        elif any(all(h[k] >= NOISE for h in d) for k in (0, 1)):
+            pays.append(label)
+    return pays, costs
+
+
 def ablation(runs, ids_by, configs, md, abl_dir):
     offs = [c for c in configs if c.startswith("off-")]
     if not offs:
         return
-    md.append("## Each stage off, everything else at its default\n")
+    md.append("## What each stage buys\n")
     md.append(f"From the runs in `{abl_dir}` (their commands are in each run's folder): "
               "fewer draws and views than the tables above, each stage off against the "
-              "defaults on the same points. ")
-    md.append("Per input, the change of 1 - RI and of Hamming when the stage is turned off "
-              "(off minus defaults, `1-3 / 4-6`): positive means the stage helps there. An "
-              f"input is listed under 'pays' when both halves gain at least {NOISE} on one "
-              "metric and neither loses that much on the other, under 'costs' when a half "
-              f"loses at least {NOISE} on either metric. Inputs the run left out are blank.\n")
+              "defaults on the same points. A stage pays on an input when turning it off makes "
+              f"both halves worse by at least {NOISE} in 1 - RI or Hamming and neither better by "
+              "as much in the other; it costs on an input when turning it off makes a half "
+              f"better by at least {NOISE} in either. Detail per input follows the table.\n")
+    md.append("| stage | pays on | costs on |")
+    md.append("|---|---|---|")
     for off in offs:
-        md.append(f"### {off[4:]}\n")
-        md.append("| input | Δ 1 - RI | Δ Hamming | segments (defaults → off) | s (defaults → off) |")
+        pays, costs = verdict(stage_deltas(runs, ids_by, off))
+        md.append(f"| {off[4:]} | {', '.join(pays) or '—'} | {', '.join(costs) or '—'} |")
+    md.append("")
+    md.append("### Each stage off, per input\n")
+    md.append("Off minus defaults, `1-3 / 4-6`: positive means the stage helps there.\n")
+    for off in offs:
+        md.append(f"#### {off[4:]}\n")
+        md.append("| input | Δ 1 - RI | Δ Hamming | segments (defaults → off) | "
+                  "s (defaults → off) |")
         md.append("|---|---|---|---|---|")
-        pays, costs = [], []
-        for folder, mode, label in INPUTS:
-            base = runs.get(("base", folder, mode, "ours"))
-            other = runs.get((off, folder, mode, "ours"))
-            if not base or not other:
-                continue
-            ids_a = [i for i in ids_by[HALVES[0]] if i in other]
-            ids_b = [i for i in ids_by[HALVES[1]] if i in other]
-            ids_all = ids_a + ids_b
-            d = []
-            for ids in (ids_a, ids_b):
-                mb, _ = means(base, ids)
-                mo, _ = means(other, ids)
-                d.append((mo[0] - mb[0], mo[1] - mb[1]))
-            mb, _ = means(base, ids_all)
-            mo, _ = means(other, ids_all)
+        for label, d, mb, mo in stage_deltas(runs, ids_by, off):
             md.append(f"| {label} | {d[0][0]:+.3f} / {d[1][0]:+.3f} | "
                       f"{d[0][1]:+.3f} / {d[1][1]:+.3f} | {fmt(mb[2], 1)} → {fmt(mo[2], 1)} | "
                       f"{fmt(mb[3], 2)} → {fmt(mo[3], 2)} |")
-            if any(x <= -NOISE for h in d for x in h):
-                costs.append(label)
-            elif any(all(h[k] >= NOISE for h in d) for k in (0, 1)):
-                pays.append(label)
         md.append("")
-        md.append(f"Pays on: {', '.join(pays) or 'nothing'}. "
-                  f"Costs on: {', '.join(costs) or 'nothing'}.\n")
 
 
 def main():

@@ -9,7 +9,7 @@ TABLE = pcl_ncut_seg.parameter_table()
 
 # Per parameter, a valid value other than its default (every row must have one).
 OTHER = {
-    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "centrality_samples": 30, "centrality": "exact",
+    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "organized_rim": False, "single_view": False, "centrality_samples": 30, "centrality": "exact",
     "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
     "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,

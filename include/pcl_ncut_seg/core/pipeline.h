@@ -1,15 +1,35 @@
 /*
- * pcl_ncut_seg: the whole segmentation over plain arrays, in two stages (the paper's order):
- *   analyze(): graph (4.1) -> centrality (4.1) -> supernodes (4.2) -> refinement (4.3)
- *              -> crease splits -> contact concavity and edge creases, once per start of
- *              eq. (1)'s sampling; in CAD mode (Sec. 7) the ridge graph first. Expensive: once
- *              per input.
- *   cut():     supernode graph (5.1) -> hierarchy and stopping rule (5.2) -> point segments
- *              -> boundary refinement -> numbering, per start, and the medoid of the starts'
- *              segmentations. Cheap: repeat it on a kept analysis.
- * Each stage is a named function of its own file (analysis_stages.h, cut_stages.h and the
- * files they call); this file only runs them in order. segmentPoints() does everything from
- * a point array, as the PCL front end does from a cloud.
+ * pcl_ncut_seg: the whole segmentation over plain arrays, in two stages (the paper's order).
+ * Every stage, in the order it runs; [paper] is the paper's (section, equation), [ext] an
+ * extension with the parameter that switches it (results/report.md says what each buys).
+ *
+ * Before the analysis (the PCL front end, or segmentPoints()):
+ *   [ext]   max_points          an even subset of a dense cloud is analysed (core/subsample.h)
+ *   [ext]   organized_rim       an organized cloud's rim from its pixel grid (core/rim_merge.h)
+ * analyze(), the expensive stage, once per input (analysis_stages.h):
+ *   [paper] kNN graph           Sec. 4.1
+ *   [ext]   denoise             noise detected and projected out (core/denoise.h)
+ *   [ext]   irregular_sampling  random sampling detected; f averaged (core/denoise.h)
+ *   [ext]   bridge_gap          components joined across sampling gaps (core/bridging.h)
+ *   [ext]   single_view         an unorganized view's rim from its sensor (core/single_view.h)
+ *   [paper] centrality f        Sec. 4.1, eq. (1); [ext] centrality=fast on a coarse graph
+ *                               (core/coarse_centrality.h), [ext] starts (core/starts.h)
+ *   [paper] supernodes          Sec. 4.2, gradient flow with saddles
+ *   [paper] local refinement    Sec. 4.3
+ *   [ext]   crease_split        supernodes split at concave creases (core/crease_split.h)
+ *   [ext]   contact concavity   measured for concavity and boundary_band (core/concavity.h)
+ *   [paper] CAD mode            Sec. 7, the ridge graph first, instead of the above (core/cad.h)
+ * cut(), the cheap stage, repeatable on a kept analysis (cut_stages.h), per start:
+ *   [paper] similarity          Sec. 5.1, eqs. (7)-(9); [ext] normalize_width, adjacency,
+ *                               concavity, flat_elongation (core/supernode_graph.h)
+ *   [paper] hierarchy           Sec. 5.2, threshold rule; [ext] stopping=short_cut
+ *                               (core/short_cut.h), count
+ *   [paper] point segments      footnote 6
+ *   [ext]   boundary_band       point-level boundaries by minimum cuts (core/boundary_refinement.h)
+ *   [ext]   rim_merge           open views: pieces the rim cut off merged (core/rim_merge.h)
+ *   [ext]   view_small_segment  open views: small pieces merged (core/small_segments.h)
+ *   [ext]   starts              the medoid of the starts' segmentations (core/starts.h)
+ * segmentPoints() does everything from a point array, as the PCL front end does from a cloud.
  */
 #pragma once
 
