@@ -8,9 +8,9 @@
 #   bash scripts/report.sh OUT CONFIG [evaluator flags for 'ours' ...]
 #
 # CONFIG names the run: "defaults" (ours with the given flags, and on views ours on the whole
-# object too), "peers" (LCCP and CPC at the
-# settings below, and the people against each other), or any name, e.g. "off-concavity" with
-# "-concavity off". Environment: DATA (the dev split, default ../shared/data/psb-dev), EVAL (the
+# object too), "lccp" (LCCP at the settings below, and the people against each other), "cpc",
+# or any other name for ours with the given flags, e.g. "off-concavity" with "-concavity off".
+# Environment: DATA (the dev split, default ../shared/data/psb-dev), EVAL (the
 # evaluator, default build/tools/pcl_ncut_seg_eval), DRAWS (draws of the uniform samples,
 # default 3), NOISY_DRAWS (of the noisy and graded samples, default 1), SAMPLES (default 20000),
 # VIEWS (views per model, default 4), JOBS (evaluator runs at a time, default 2), INPUTS (a
@@ -38,23 +38,27 @@ INPUTS="${INPUTS:-$ALL_INPUTS}"
 [ -x "$EVAL" ] || { echo "report.sh: no evaluator at $EVAL (build it first)" >&2; exit 1; }
 
 # LCCP's and CPC's settings, tuned on the dev split (scripts/tune_peers.sh; results/peers.md).
-PEERS_WHOLE=(-peer_min_segment 3 -peer_seed 0.1)
-PEERS_VIEWS=(-peer_min_segment 3 -peer_seed 0.1)
+LCCP_WHOLE=(-peer_min_segment 0 -peer_seed 0.05)
+LCCP_VIEWS=(-peer_min_segment 0 -peer_seed 0.1)
+CPC_WHOLE=(-peer_min_segment 0 -peer_seed 0.05)
+CPC_VIEWS=(-peer_min_segment 3 -peer_seed 0.05)
 
-if [ "$CONFIG" = peers ]; then
-  METHODS=(-methods lccp,cpc,human)
-elif [ "$CONFIG" = defaults ]; then
-  METHODS=(-methods ours,whole)
-else
-  METHODS=(-methods ours)
-fi
+case "$CONFIG" in
+lccp) METHODS=(-methods lccp,human) ;;
+cpc) METHODS=(-methods cpc) ;;
+defaults) METHODS=(-methods ours,whole) ;;
+*) METHODS=(-methods ours) ;;
+esac
 
 flags_of() {
   local whole=(-modes auto) views=(-views "$VIEWS" -view_forms view,crop,voxel,laser)
   local samples=(-samples "$SAMPLES")
-  if [ "$CONFIG" = peers ]; then
-    whole+=("${PEERS_WHOLE[@]}")
-    views+=("${PEERS_VIEWS[@]}")
+  if [ "$CONFIG" = lccp ]; then
+    whole+=("${LCCP_WHOLE[@]}")
+    views+=("${LCCP_VIEWS[@]}")
+  elif [ "$CONFIG" = cpc ]; then
+    whole+=("${CPC_WHOLE[@]}")
+    views+=("${CPC_VIEWS[@]}")
   fi
   case "$1" in
   centroids) echo "${whole[*]}" ;;
