@@ -139,10 +139,6 @@ public:
   /** \param[in] rule  stopping.rule */
   void setStoppingRule(pcl_ncut_seg::StoppingRule rule);
   pcl_ncut_seg::StoppingRule getStoppingRule() const { return params_.stopping.rule; }
-  /** \param[in] enable  true: the short-cut rule (or the largest gap after
-   * setNeckExponent(0)); false: the threshold rule. No effect while a count is asked for. */
-  void setLargestGapStopping(bool enable);
-  bool getLargestGapStopping() const;
   /** \param[in] segments  stopping.max_segments, >= 1 */
   void setMaxSegments(int segments);
   int getMaxSegments() const { return params_.stopping.max_segments; }
@@ -169,16 +165,6 @@ public:
   /** \param[in] adjacency  similarity.adjacency */
   void setAdjacency(pcl_ncut_seg::Adjacency adjacency);
   pcl_ncut_seg::Adjacency getAdjacency() const { return params_.similarity.adjacency; }
-  /** \param[in] connect  true: at least Adjacency::Trees; false: Adjacency::Saddles */
-  void setConnectAdjacentTrees(bool connect);
-  bool getConnectAdjacentTrees() const {
-    return params_.similarity.adjacency != pcl_ncut_seg::Adjacency::Saddles;
-  }
-  /** \param[in] connect  true: Adjacency::All; false: Adjacency::Trees if All was set */
-  void setConnectAllAdjacent(bool connect);
-  bool getConnectAllAdjacent() const {
-    return params_.similarity.adjacency == pcl_ncut_seg::Adjacency::All;
-  }
   /** \param[in] share  similarity.adjacent_share, in [0, 1] */
   void setAdjacentShare(double share);
   double getAdjacentShare() const { return params_.similarity.adjacent_share; }

@@ -175,7 +175,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     seg.setNumberOfSegments(segments_wanted);
     seg.setNumberOfSplitValues(splits);
     seg.setNormalizeWidth(flags & 2);
-    seg.setConnectAdjacentTrees(flags & 4);
+    if (!(flags & 4)) // else the default, every touching pair
+      seg.setAdjacency(pcl_ncut_seg::Adjacency::Saddles);
     seg.setNumberOfThreads(num_threads);
     // Options beyond the paper: 2 bits or 1 bit each, 0 keeps the default.
     static const double kRadii[] = {0, 0, 0.5, 1e3}, kWeight[] = {0, 0, 0.01, 1e3},
@@ -188,17 +189,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setConcavityWeight(kWeight[(options1 >> 2) & 3]);
     if ((options1 >> 4) & 3)
       seg.setFlatElongation(kElongation[(options1 >> 4) & 3]);
-    if (options1 & 0x40)
-      seg.setLargestGapStopping(false);
+    if ((options1 & 0x40) && segments_wanted == 0) // the threshold rule, unless a count
+      seg.setStoppingRule(pcl_ncut_seg::StoppingRule::Threshold);
     if (options1 & 0x80)
       seg.setCadMode(true);
     if (options2 & 3)
       seg.setMaxSegments(kMaxSegments[options2 & 3]);
     if ((options2 >> 2) & 3)
       seg.setGapFloor(kFloor[(options2 >> 2) & 3]);
-    if (((options2 >> 4) & 3) == 3)
-      seg.setConnectAllAdjacent(false);
-    else if ((options2 >> 4) & 3)
+    if (((options2 >> 4) & 3) == 3) {
+      if (seg.getAdjacency() == pcl_ncut_seg::Adjacency::All)
+        seg.setAdjacency(pcl_ncut_seg::Adjacency::Trees);
+    } else if ((options2 >> 4) & 3)
       seg.setAdjacentShare(kShare[(options2 >> 4) & 3]);
     if (options2 & 0x40)
       seg.setMinSegmentFraction(0.25);

@@ -96,24 +96,6 @@ PCL_NCUT_SEG_SETTER(setNumberOfThreads, unsigned, p.execution.num_threads = valu
 
 #undef PCL_NCUT_SEG_SETTER
 
-// The setters of an older release whose values became modes.
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setLargestGapStopping(bool enable) {
-  using pcl_ncut_seg::StoppingRule;
-  pcl_ncut_seg::Parameters p = params_;
-  if (!enable && p.stopping.rule != StoppingRule::Count)
-    p.stopping.rule = StoppingRule::Threshold;
-  else if (enable && p.stopping.rule == StoppingRule::Threshold)
-    p.stopping.rule = StoppingRule::ShortCut;
-  update(p, "setLargestGapStopping");
-}
-
-template <typename PointT>
-bool pcl::SupernodeNCutSegmentation<PointT>::getLargestGapStopping() const {
-  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::LargestGap ||
-         params_.stopping.rule == pcl_ncut_seg::StoppingRule::ShortCut;
-}
-
 template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNeckExponent(double exponent) {
   using pcl_ncut_seg::StoppingRule;
@@ -151,26 +133,4 @@ void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
 
 template <typename PointT> int pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSegments() const {
   return params_.stopping.rule == pcl_ncut_seg::StoppingRule::Count ? params_.stopping.segments : 0;
-}
-
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setConnectAdjacentTrees(bool connect) {
-  using pcl_ncut_seg::Adjacency;
-  pcl_ncut_seg::Parameters p = params_;
-  if (connect && p.similarity.adjacency == Adjacency::Saddles)
-    p.similarity.adjacency = Adjacency::Trees;
-  else if (!connect) // All implies the trees' joining: without it, saddles only
-    p.similarity.adjacency = Adjacency::Saddles;
-  update(p, "setConnectAdjacentTrees");
-}
-
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect) {
-  using pcl_ncut_seg::Adjacency;
-  pcl_ncut_seg::Parameters p = params_;
-  if (connect)
-    p.similarity.adjacency = Adjacency::All;
-  else if (p.similarity.adjacency == Adjacency::All)
-    p.similarity.adjacency = Adjacency::Trees;
-  update(p, "setConnectAllAdjacent");
 }
