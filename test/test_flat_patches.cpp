@@ -127,7 +127,8 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
     seg.setIrregularSampling(0.0);
-    seg.setNeckExponent(0.0); // the largest-gap rule, which keeps every nearly free cut
+    // The largest-gap rule, which keeps every nearly free cut.
+    seg.setStoppingRule(pcl_ncut_seg::StoppingRule::LargestGap);
     std::vector<pcl::PointIndices> segments;
     std::size_t chips[2], count[2];
     for (int flat = 0; flat < 2; ++flat) {
@@ -149,7 +150,7 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
 
 TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
   // Without flat patches, the chips of the test above have long boundaries for their size:
-  // the short-cut stopping rule (setNeckExponent, on by default) keeps fewer of them than the
+  // the short-cut stopping rule (the default) keeps fewer of them than the
   // largest-gap rule (6 / 15 / 18 segments to 6 / 12 / 14 over the three seeds: as many on
   // seed 1, never more). With flat
   // patches, the cuts left are around the rim, a ridge of the centrality, whose boundaries are
@@ -170,7 +171,8 @@ TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
       seg.setFlatElongation(flat);
       std::size_t count[2];
       for (int rule = 0; rule < 2; ++rule) {
-        seg.setNeckExponent(rule ? 3.0 : 0.0);
+        seg.setStoppingRule(rule ? pcl_ncut_seg::StoppingRule::ShortCut
+                                 : pcl_ncut_seg::StoppingRule::LargestGap);
         seg.extract(segments);
         count[rule] = segments.size();
       }

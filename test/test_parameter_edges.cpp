@@ -74,9 +74,12 @@ std::vector<ParamCase> validEdges() {
   for (double x : {0.0, dmax})
     v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
                  [x](const Seg& s) { return s.getThreshold() == x; }});
-  for (int n : {0, 1, INT_MAX})
+  for (int n : {1, INT_MAX})
     v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
-                 [n](const Seg& s) { return s.getNumberOfSegments() == n; }});
+                 [n](const Seg& s) {
+                   return s.getNumberOfSegments() == n &&
+                          s.getStoppingRule() == pcl_ncut_seg::StoppingRule::Count;
+                 }});
   for (int n : {1, INT_MAX})
     v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
                  [n](const Seg& s) { return s.getNumberOfSplitValues() == n; }});
@@ -92,7 +95,7 @@ std::vector<ParamCase> validEdges() {
   for (double x : {dmin, dmax})
     v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
                  [x](const Seg& s) { return s.getGapFloor() == x; }});
-  for (double x : {0.0, dmax})
+  for (double x : {dmin, dmax})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
                  [x](const Seg& s) { return s.getNeckExponent() == x; }});
   for (double x : {dmin, dmax})
@@ -148,9 +151,12 @@ std::vector<ParamCase> justPast() {
   for (double x : {-dmin, dinf, dnan})
     v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
                  [](const Seg& s) { return s.getThreshold() != Seg().getThreshold(); }});
-  for (int n : {-1, INT_MIN})
+  for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
-                 [](const Seg& s) { return s.getNumberOfSegments() != 0; }});
+                 [](const Seg& s) {
+                   return s.getNumberOfSegments() != Seg().getNumberOfSegments() ||
+                          s.getStoppingRule() != Seg().getStoppingRule();
+                 }});
   for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
                  [](const Seg& s) { return s.getNumberOfSplitValues() != 100; }});
@@ -164,9 +170,12 @@ std::vector<ParamCase> justPast() {
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
                  [](const Seg& s) { return s.getGapFloor() != Seg().getGapFloor(); }});
-  for (double x : {-dmin, dinf, dnan})
+  for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
-                 [](const Seg& s) { return s.getNeckExponent() != Seg().getNeckExponent(); }});
+                 [](const Seg& s) {
+                   return s.getNeckExponent() != Seg().getNeckExponent() ||
+                          s.getStoppingRule() != Seg().getStoppingRule();
+                 }});
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
                  [](const Seg& s) { return s.getNeckBound() != Seg().getNeckBound(); }});
@@ -235,7 +244,8 @@ Fingerprint fingerprint(const Cloud::Ptr& cloud, unsigned threads, int segments)
   Seg seg;
   seg.setInputCloud(cloud);
   seg.setNumberOfThreads(threads);
-  seg.setNumberOfSegments(segments);
+  if (segments > 0)
+    seg.setNumberOfSegments(segments);
   Segments out;
   seg.extract(out);
   Fingerprint f;

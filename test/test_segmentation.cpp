@@ -185,8 +185,10 @@ TEST(Segmentation, SettersRejectBadValuesAndKeepTheOldOnes) {
   EXPECT_EQ(seg.getAlpha2(), 0.5);
   seg.setThreshold(-1);
   EXPECT_EQ(seg.getThreshold(), 0.1);
+  seg.setNumberOfSegments(0);
   seg.setNumberOfSegments(-2);
-  EXPECT_EQ(seg.getNumberOfSegments(), 0);
+  EXPECT_EQ(seg.getNumberOfSegments(), 2);
+  EXPECT_EQ(seg.getStoppingRule(), pcl_ncut_seg::StoppingRule::ShortCut) << "not the count rule";
   seg.setNumberOfSplitValues(0);
   EXPECT_EQ(seg.getNumberOfSplitValues(), 100);
   // Valid edge values are taken.

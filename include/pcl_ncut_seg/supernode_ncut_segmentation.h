@@ -145,17 +145,18 @@ public:
   /** \param[in] floor  stopping.gap_floor, > 0 */
   void setGapFloor(double floor);
   double getGapFloor() const { return params_.stopping.gap_floor; }
-  /** \param[in] exponent  stopping.neck_exponent, > 0; 0: the largest-gap rule instead of
-   * the short-cut rule */
+  /** \param[in] exponent  stopping.neck_exponent, > 0 (read by the short-cut rule) */
   void setNeckExponent(double exponent);
-  double getNeckExponent() const;
+  double getNeckExponent() const { return params_.stopping.neck_exponent; }
   /** \param[in] bound  stopping.neck_bound, > 0 */
   void setNeckBound(double bound);
   double getNeckBound() const { return params_.stopping.neck_bound; }
-  /** \param[in] segments  > 0: the count rule with this many segments; 0: back to the
-   * default rule if the count rule was in use */
+  /** \brief Ask for a number of segments: stopping.segments, and the count rule (as the tools'
+   * -segments). Another rule is chosen with setStoppingRule().
+   * \param[in] segments  stopping.segments, >= 1 */
   void setNumberOfSegments(int segments);
-  int getNumberOfSegments() const;
+  /** \brief stopping.segments, which only the count rule reads (getStoppingRule()). */
+  int getNumberOfSegments() const { return params_.stopping.segments; }
   /** \param[in] values  stopping.num_splits, >= 1 */
   void setNumberOfSplitValues(int values);
   int getNumberOfSplitValues() const { return params_.stopping.num_splits; }

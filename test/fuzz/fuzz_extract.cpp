@@ -172,7 +172,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     seg.setAlpha1(alpha1);
     seg.setAlpha2(alpha2);
     seg.setThreshold(threshold);
-    seg.setNumberOfSegments(segments_wanted);
+    if (segments_wanted > 0)
+      seg.setNumberOfSegments(segments_wanted);
     seg.setNumberOfSplitValues(splits);
     seg.setNormalizeWidth(flags & 2);
     if (!(flags & 4)) // else the default, every touching pair
@@ -213,10 +214,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setBoundaryCreaseWeight(1e3);
     if ((later_options >> 3) & 3)
       seg.setCreaseSplit(kCreaseSplit[(later_options >> 3) & 3]);
-    // The short-cut stopping rule: flag 0x08 turns it off, 0x80 sets extremes.
-    if (flags & 0x08)
-      seg.setNeckExponent(0);
+    // The short-cut stopping rule: flag 0x08 takes the largest-gap rule instead, 0x80 the
+    // short-cut rule at its extremes.
+    using pcl_ncut_seg::StoppingRule;
+    if ((flags & 0x08) && seg.getStoppingRule() == StoppingRule::ShortCut)
+      seg.setStoppingRule(StoppingRule::LargestGap);
     if (flags & 0x80) {
+      if (seg.getStoppingRule() == StoppingRule::LargestGap)
+        seg.setStoppingRule(StoppingRule::ShortCut);
       seg.setNeckExponent(1e3);
       seg.setNeckBound(1e300);
     }
@@ -252,7 +257,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // The cheap path: change only cut parameters and extract again.
-  seg.setNumberOfSegments(segments_wanted > 0 ? 0 : 3);
+  if (segments_wanted > 0) // from the count to the default rule, or the other way
+    seg.setStoppingRule(pcl_ncut_seg::Parameters().stopping.rule);
+  else
+    seg.setNumberOfSegments(3);
   seg.setThreshold(kThreshold[(flags >> 5) % 8]);
   seg.setAlpha2(kPositive[flags % 9]);
   seg.setFlatElongation(options1 & 0x20 ? 0.0 : 0.2);

@@ -86,6 +86,7 @@ PCL_NCUT_SEG_SETTER(setMinSegmentFraction, double,
                     p.stopping.min_segment_fraction = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setMaxSegments, int, p.stopping.max_segments = value)
 PCL_NCUT_SEG_SETTER(setGapFloor, double, p.stopping.gap_floor = value)
+PCL_NCUT_SEG_SETTER(setNeckExponent, double, p.stopping.neck_exponent = value)
 PCL_NCUT_SEG_SETTER(setNeckBound, double, p.stopping.neck_bound = value)
 PCL_NCUT_SEG_SETTER(setBoundaryBand, double, p.boundary.band = ncut_detail::offIfZero(value))
 PCL_NCUT_SEG_SETTER(setBoundaryCreaseWeight, double, p.boundary.crease_weight = value)
@@ -96,41 +97,11 @@ PCL_NCUT_SEG_SETTER(setNumberOfThreads, unsigned, p.execution.num_threads = valu
 
 #undef PCL_NCUT_SEG_SETTER
 
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setNeckExponent(double exponent) {
-  using pcl_ncut_seg::StoppingRule;
-  pcl_ncut_seg::Parameters p = params_;
-  if (exponent == 0.0) { // the largest jump instead of the short-cut rule
-    if (p.stopping.rule == StoppingRule::ShortCut)
-      p.stopping.rule = StoppingRule::LargestGap;
-  } else {
-    p.stopping.neck_exponent = exponent;
-    if (p.stopping.rule == StoppingRule::LargestGap)
-      p.stopping.rule = StoppingRule::ShortCut;
-  }
-  update(p, "setNeckExponent");
-}
-
-template <typename PointT> double pcl::SupernodeNCutSegmentation<PointT>::getNeckExponent() const {
-  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::LargestGap
-             ? 0.0
-             : params_.stopping.neck_exponent;
-}
-
+// Asking for a number of segments is choosing the count rule (as the table's "segments").
 template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
-  using pcl_ncut_seg::StoppingRule;
   pcl_ncut_seg::Parameters p = params_;
-  if (segments == 0) {
-    if (p.stopping.rule == StoppingRule::Count)
-      p.stopping.rule = pcl_ncut_seg::Parameters().stopping.rule;
-  } else {
-    p.stopping.segments = segments;
-    p.stopping.rule = StoppingRule::Count;
-  }
+  p.stopping.segments = segments;
+  p.stopping.rule = pcl_ncut_seg::StoppingRule::Count;
   update(p, "setNumberOfSegments");
-}
-
-template <typename PointT> int pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSegments() const {
-  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::Count ? params_.stopping.segments : 0;
 }
