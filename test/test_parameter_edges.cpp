@@ -23,6 +23,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -52,7 +53,8 @@ std::vector<ParamCase> validEdges() {
                [](const Seg& s) { return s.getNumberOfNeighbours() == 2; }});
   v.push_back({"setNumberOfNeighbours", [](Seg& s) { s.setNumberOfNeighbours(INT_MAX); },
                [](const Seg& s) { return s.getNumberOfNeighbours() == INT_MAX; }});
-  for (int n : {0, 1, INT_MAX})
+  for (std::optional<int> n :
+       {std::optional<int>(), std::optional<int>(1), std::optional<int>(INT_MAX)})
     v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
                  [n](const Seg& s) { return s.getNumberOfSamples() == n; }});
   for (float f : {0.0f, 1.0f}) {
@@ -86,7 +88,8 @@ std::vector<ParamCase> validEdges() {
   for (unsigned n : {0u, 1u, 64u, UINT_MAX})
     v.push_back({"setNumberOfThreads", [n](Seg& s) { s.setNumberOfThreads(n); },
                  [n](const Seg& s) { return s.getNumberOfThreads() == n; }});
-  for (double x : {0.0, 0.5})
+  for (std::optional<double> x :
+       {std::optional<double>(), std::optional<double>(dmin), std::optional<double>(0.5)})
     v.push_back({"setMinSegmentFraction", [x](Seg& s) { s.setMinSegmentFraction(x); },
                  [x](const Seg& s) { return s.getMinSegmentFraction() == x; }});
   for (int n : {1, INT_MAX})
@@ -129,9 +132,9 @@ std::vector<ParamCase> justPast() {
   for (int k : {1, 0, -1, INT_MIN})
     v.push_back({"setNumberOfNeighbours", [k](Seg& s) { s.setNumberOfNeighbours(k); },
                  [](const Seg& s) { return s.getNumberOfNeighbours() != 10; }});
-  for (int n : {-1, INT_MIN})
+  for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
-                 [](const Seg& s) { return s.getNumberOfSamples() != 0; }});
+                 [](const Seg& s) { return s.getNumberOfSamples() != std::nullopt; }});
   for (float f : {std::nextafter(0.0f, -1.0f), std::nextafter(1.0f, 2.0f), kNaN, kInf}) {
     v.push_back({"setCrossingFraction", [f](Seg& s) { s.setCrossingFraction(f); },
                  [](const Seg& s) { return s.getCrossingFraction() != 0.3f; }});
@@ -160,7 +163,7 @@ std::vector<ParamCase> justPast() {
   for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
                  [](const Seg& s) { return s.getNumberOfSplitValues() != 100; }});
-  for (double x : {-dmin, std::nextafter(0.5, 1.0), dinf, dnan})
+  for (double x : {0.0, -dmin, std::nextafter(0.5, 1.0), dinf, dnan})
     v.push_back(
         {"setMinSegmentFraction", [x](Seg& s) { s.setMinSegmentFraction(x); },
          [](const Seg& s) { return s.getMinSegmentFraction() != Seg().getMinSegmentFraction(); }});

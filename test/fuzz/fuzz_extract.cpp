@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -164,7 +165,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (indices)
       seg.setIndices(indices);
     seg.setNumberOfNeighbours(k);
-    seg.setNumberOfSamples(samples);
+    seg.setNumberOfSamples(samples ? std::optional<int>(samples) : std::nullopt); // 0: auto
     seg.setCrossingFraction(crossing);
     seg.setAreaFraction(area);
     seg.setHeightFraction(height);
@@ -179,10 +180,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!(flags & 4)) // else the default, every touching pair
       seg.setAdjacency(pcl_ncut_seg::Adjacency::Saddles);
     seg.setNumberOfThreads(num_threads);
-    // Options beyond the paper: 2 bits or 1 bit each, 0 keeps the default.
-    static const double kRadii[] = {0, 0, 0.5, 1e3}, kWeight[] = {0, 0, 0.01, 1e3},
-                        kElongation[] = {0, 0, 1e-3, 10}, kFloor[] = {0, 1e-300, 0.5, 1e300},
-                        kShare[] = {0, 0, 1, 0};
+    // Options beyond the paper: 2 bits or 1 bit each, 0 keeps the default (nullopt: off).
+    using Off = std::optional<double>;
+    static const Off kRadii[] = {0, Off(), 0.5, 1e3}, kWeight[] = {0, Off(), 0.01, 1e3},
+                     kElongation[] = {0, Off(), 1e-3, 10};
+    static const double kFloor[] = {0, 1e-300, 0.5, 1e300}, kShare[] = {0, 0, 1, 0};
     static const int kMaxSegments[] = {0, 1, 2, INT_MAX};
     if (options1 & 3)
       seg.setBridgeGap(kRadii[options1 & 3]);
@@ -207,7 +209,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setMinSegmentFraction(0.25);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
-    static const double kBand[] = {0, 0, 0.5, 1e-3}, kCreaseSplit[] = {0, 0, 1e-6, 1e3};
+    static const Off kBand[] = {0, Off(), 0.5, 1e-3}, kCreaseSplit[] = {0, Off(), 1e-6, 1e3};
     if (later_options & 3)
       seg.setBoundaryBand(kBand[later_options & 3]);
     if (later_options & 4)
@@ -263,7 +265,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     seg.setNumberOfSegments(3);
   seg.setThreshold(kThreshold[(flags >> 5) % 8]);
   seg.setAlpha2(kPositive[flags % 9]);
-  seg.setFlatElongation(options1 & 0x20 ? 0.0 : 0.2);
+  seg.setFlatElongation(options1 & 0x20 ? std::optional<double>() : 0.2);
   seg.setNeckBound(flags & 0x08 ? 1e-3 : 0.5);
   seg.setBoundaryCreaseWeight(later_options & 4 ? 0.0 : 3.0);
   seg.extract(segments);
