@@ -8,6 +8,7 @@
  *
  *   pcl_ncut_seg_bench_boundary MODEL.off N [--band F] [--threads T]
  */
+#include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "mesh_sampling.h"
@@ -16,6 +17,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -26,7 +28,7 @@ using pcl_ncut_seg_bench::now;
 using pcl_ncut_seg_bench::procStatusBytes;
 using pcl_ncut_seg_bench::startPeakMemory;
 
-int runOne(const std::string& path, std::size_t n, double band, int threads) {
+int runOne(const std::string& path, std::size_t n, std::optional<double> band, int threads) {
   pcl_ncut_seg::TriangleMesh mesh;
   std::string error;
   if (!pcl_ncut_seg::readOff(path, mesh, &error)) {
@@ -64,20 +66,26 @@ int runOne(const std::string& path, std::size_t n, double band, int threads) {
 } // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 6 && std::string(argv[1]) == "--run")
-    return runOne(argv[2], std::strtoull(argv[3], nullptr, 10), std::atof(argv[4]),
+  if (argc == 6 && std::string(argv[1]) == "--run") // the band or "off"
+    return runOne(argv[2], std::strtoull(argv[3], nullptr, 10),
+                  std::string(argv[4]) == "off" ? std::nullopt
+                                                : std::optional<double>(std::atof(argv[4])),
                   std::atoi(argv[5]));
   if (argc < 3) {
     std::fprintf(stderr, "Usage: %s MODEL.off N [--band F] [--threads T]\n", argv[0]);
     return 1;
   }
-  double band = 0.2;
+  pcl_ncut_seg::Parameters params; // the band: the default, or --band's
   int threads = 0;
   for (int i = 3; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--band")
-      band = std::atof(argv[i + 1]);
-    else if (a == "--threads")
+    std::string why;
+    if (a == "--band") {
+      if (!pcl_ncut_seg::setParameter(params, "boundary_band", argv[i + 1], &why)) {
+        std::fprintf(stderr, "--band: %s\n", why.c_str());
+        return 1;
+      }
+    } else if (a == "--threads")
       threads = std::atoi(argv[i + 1]);
     else {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -88,7 +96,8 @@ int main(int argc, char** argv) {
               argv[1], argv[2]);
   std::printf("| band | extract() | LRef | PSeg | cut() again | its CPU time | HSeg | PSeg | t | "
               "peak B/point |\n|---|---|---|---|---|---|---|---|---|---|\n");
-  for (double b : {0.0, band}) {
+  const std::string band = pcl_ncut_seg::parameterValue(params, "boundary_band");
+  for (const std::string& b : {std::string("off"), band}) {
     std::ostringstream command;
     command << "'" << argv[0] << "' --run '" << argv[1] << "' " << argv[2] << " " << b << " "
             << threads;
@@ -104,8 +113,8 @@ int main(int argc, char** argv) {
     if (std::sscanf(line, "%lf %lf %lf %lf %lf %lf %lf %zu %lf", &first, &lref, &pseg, &again,
                     &again_cpu, &hseg2, &pseg2, &t, &peak) != 9)
       return 1;
-    std::printf("| %g | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %zu | %.0f |\n", b, first,
-                lref, pseg, again, again_cpu, hseg2, pseg2, t, peak);
+    std::printf("| %s | %.3f | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %zu | %.0f |\n", b.c_str(),
+                first, lref, pseg, again, again_cpu, hseg2, pseg2, t, peak);
   }
   return 0;
 }

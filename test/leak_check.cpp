@@ -73,7 +73,10 @@ void prepare(Seg& seg, std::size_t i) {
   seg.setInputCloud(cloud);
   seg.setIndices(pcl::IndicesPtr()); // all points
   seg.setNumberOfNeighbours(8 + static_cast<int>(i % 5));
-  seg.setNumberOfSegments(static_cast<int>(i % 9));
+  if (i % 9 == 0)
+    seg.setStoppingRule(pcl_ncut_seg::Parameters().stopping.rule);
+  else
+    seg.setNumberOfSegments(static_cast<int>(i % 9));
 }
 
 void extractAndUse(Seg& seg) {

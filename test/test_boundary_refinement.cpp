@@ -17,6 +17,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 
@@ -48,12 +49,12 @@ struct Segmented {
   std::size_t segments = 0;
 };
 
-Segmented segment(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int count, double band,
-                  unsigned threads = 0, double crease_split = -1) {
+Segmented segment(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int count,
+                  std::optional<double> band, unsigned threads = 0, bool crease_splits = true) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
-  if (crease_split >= 0)
-    seg.setCreaseSplit(crease_split);
+  if (!crease_splits)
+    seg.setCreaseSplit(std::nullopt);
   if (count > 0)
     seg.setNumberOfSegments(count);
   seg.setBoundaryBand(band);
@@ -177,8 +178,8 @@ TEST(BoundaryRefinement, DumbbellBoundaryMovesToACrease) {
     const test::LabeledShape shape = test::makeDumbbell(6000, seed);
     // Crease splits off: they already move the supernodes' boundary to the dumbbell's creases,
     // and this test needs a boundary off the crease for the refinement to move.
-    const Segmented plain = segment(shape.cloud, 2, 0.0, 0, 0.0);
-    const Segmented refined = segment(shape.cloud, 2, 0.2, 0, 0.0);
+    const Segmented plain = segment(shape.cloud, 2, std::nullopt, 0, false);
+    const Segmented refined = segment(shape.cloud, 2, 0.2, 0, false);
     ASSERT_EQ(plain.segments, 2u);
     ASSERT_EQ(refined.segments, 2u);
     auto barShare = [&](const Segmented& run) {
@@ -227,7 +228,7 @@ TEST(BoundaryRefinement, DumbbellBoundaryMovesToACrease) {
 TEST(BoundaryRefinement, HandBoundariesAgreeBetterWithTheParts) {
   for (std::uint64_t seed : {1, 2, 3}) {
     const test::LabeledShape shape = test::makeHand(8000, seed);
-    const Segmented plain = segment(shape.cloud, 6, 0.0);
+    const Segmented plain = segment(shape.cloud, 6, std::nullopt);
     const Segmented refined = segment(shape.cloud, 6, 0.2);
     const double before = test::randIndex(plain.labels, shape.labels);
     const double after = test::randIndex(refined.labels, shape.labels);
@@ -276,10 +277,12 @@ TEST(BoundaryRefinement, SettersRejectBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   EXPECT_EQ(seg.getBoundaryBand(), 0.2); // the default
   seg.setBoundaryBand(0.25);
-  for (double bad : {-0.1, 0.51, std::numeric_limits<double>::quiet_NaN(),
+  for (double bad : {0.0, -0.1, 0.51, std::numeric_limits<double>::quiet_NaN(),
                      std::numeric_limits<double>::infinity()})
     seg.setBoundaryBand(bad);
   EXPECT_EQ(seg.getBoundaryBand(), 0.25);
+  seg.setBoundaryBand(std::nullopt);
+  EXPECT_EQ(seg.getBoundaryBand(), std::nullopt);
   seg.setBoundaryCreaseWeight(5.0);
   for (double bad :
        {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})

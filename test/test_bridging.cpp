@@ -117,7 +117,7 @@ TEST(BridgeGap, ABarSampledWithAGapIsOneSurface) {
   EXPECT_EQ(seg.getBridgeGap(), 3.0);
   seg.setInputCloud(bar.cloud);
   std::vector<pcl::PointIndices> segments;
-  seg.setBridgeGap(0.0);
+  seg.setBridgeGap(std::nullopt);
   seg.extract(segments);
   ASSERT_NE(seg.getAnalysis(), nullptr);
   EXPECT_EQ(analysedComponents(seg), 2u);
@@ -144,13 +144,13 @@ TEST(BridgeGap, SeparateObjectsStaySeparate) {
 TEST(BridgeGap, SetterRejectsBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setBridgeGap(1.5);
-  for (double bad : {-1e-30, -1.0, std::numeric_limits<double>::quiet_NaN(),
+  for (double bad : {0.0, -1e-30, -1.0, std::numeric_limits<double>::quiet_NaN(),
                      std::numeric_limits<double>::infinity()}) {
     seg.setBridgeGap(bad);
     EXPECT_EQ(seg.getBridgeGap(), 1.5);
   }
-  seg.setBridgeGap(0.0);
-  EXPECT_EQ(seg.getBridgeGap(), 0.0);
+  seg.setBridgeGap(std::nullopt);
+  EXPECT_EQ(seg.getBridgeGap(), std::nullopt);
 }
 
 namespace {

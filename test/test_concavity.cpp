@@ -15,6 +15,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <random>
 
 using namespace pcl_ncut_seg;
@@ -162,7 +163,7 @@ TEST(ConcavityWeight, ConcaveContactsGetWeakerEdges) {
   EXPECT_EQ(seg.getConcavityWeight(), 3.0);
   seg.setInputCloud(shape.cloud);
   std::vector<pcl::PointIndices> segments;
-  auto memberWeights = [&](double w) {
+  auto memberWeights = [&](std::optional<double> w) {
     seg.setConcavityWeight(w);
     seg.extract(segments);
     std::map<std::pair<std::uint32_t, std::uint32_t>, double> out;
@@ -172,7 +173,7 @@ TEST(ConcavityWeight, ConcaveContactsGetWeakerEdges) {
         out[{e.a, e.b}] = e.w;
     return out;
   };
-  const auto off = memberWeights(0.0);
+  const auto off = memberWeights(std::nullopt);
   EXPECT_TRUE(seg.getAnalysis()->concavity.empty());
   const auto on = memberWeights(3.0);
   EXPECT_FALSE(seg.getAnalysis()->concavity.empty());
@@ -189,11 +190,11 @@ TEST(ConcavityWeight, ConcaveContactsGetWeakerEdges) {
 TEST(ConcavityWeight, SetterRejectsBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setConcavityWeight(1.5);
-  for (double bad : {-1e-30, -1.0, std::numeric_limits<double>::quiet_NaN(),
+  for (double bad : {0.0, -1e-30, -1.0, std::numeric_limits<double>::quiet_NaN(),
                      std::numeric_limits<double>::infinity()}) {
     seg.setConcavityWeight(bad);
     EXPECT_EQ(seg.getConcavityWeight(), 1.5);
   }
-  seg.setConcavityWeight(0.0);
-  EXPECT_EQ(seg.getConcavityWeight(), 0.0);
+  seg.setConcavityWeight(std::nullopt);
+  EXPECT_EQ(seg.getConcavityWeight(), std::nullopt);
 }

@@ -148,9 +148,9 @@ TEST(CreaseCut, SameSupernodesForAnyThreadCount) {
   EXPECT_TRUE(changed) << "crease cuts changed no supernode of either shape";
 }
 
-TEST(CreaseCut, SetterChecksItsValueAndZeroIsOff) {
+TEST(CreaseCut, SetterChecksItsValueAndNulloptIsOff) {
   Segmenter seg;
-  EXPECT_EQ(seg.getCreaseCut(), 0.0);
+  EXPECT_EQ(seg.getCreaseCut(), std::nullopt); // off by default
   seg.setCreaseCut(0.5);
   EXPECT_EQ(seg.getCreaseCut(), 0.5);
   seg.setCreaseCut(1.0);
@@ -164,5 +164,7 @@ TEST(CreaseCut, SetterChecksItsValueAndZeroIsOff) {
   seg.setCreaseCut(std::numeric_limits<double>::infinity());
   EXPECT_EQ(seg.getCreaseCut(), 1.0);
   seg.setCreaseCut(0.0);
-  EXPECT_EQ(seg.getCreaseCut(), 0.0);
+  EXPECT_EQ(seg.getCreaseCut(), 1.0);
+  seg.setCreaseCut(std::nullopt);
+  EXPECT_EQ(seg.getCreaseCut(), std::nullopt);
 }

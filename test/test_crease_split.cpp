@@ -15,6 +15,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 
 using namespace pcl_ncut_seg;
@@ -41,7 +42,7 @@ double offMajorityShare(const std::vector<int>& supernode, const std::vector<int
 }
 
 /// Refined supernode labels of a shape with the other defaults and crease splits at c.
-std::vector<int> refinedSupernodes(const test::LabeledShape& shape, double c) {
+std::vector<int> refinedSupernodes(const test::LabeledShape& shape, std::optional<double> c) {
   Segmenter seg;
   seg.setInputCloud(shape.cloud);
   seg.setCreaseSplit(c);
@@ -132,7 +133,7 @@ TEST(CreaseSplit, SeparatesPartsThatShareASupernode) {
   double before_sum = 0, after_sum = 0;
   for (std::uint64_t seed : {1, 2, 3}) {
     const test::LabeledShape shape = test::makeQuadruped(4000, seed);
-    const std::vector<int> off = refinedSupernodes(shape, 0.0);
+    const std::vector<int> off = refinedSupernodes(shape, std::nullopt);
     const std::vector<int> on = refinedSupernodes(shape, Segmenter().getCreaseSplit());
     const double before = offMajorityShare(off, shape.labels);
     const double after = offMajorityShare(on, shape.labels);
@@ -146,7 +147,7 @@ TEST(CreaseSplit, SeparatesPartsThatShareASupernode) {
   EXPECT_LT(after_sum, 0.75 * before_sum);
 }
 
-TEST(CreaseSplit, SetterChecksItsValueAndZeroIsThePaper) {
+TEST(CreaseSplit, SetterChecksItsValueAndNulloptIsThePaper) {
   Segmenter seg;
   EXPECT_EQ(seg.getCreaseSplit(), 0.75);
   seg.setCreaseSplit(0.5);
@@ -158,5 +159,7 @@ TEST(CreaseSplit, SetterChecksItsValueAndZeroIsThePaper) {
   seg.setCreaseSplit(std::numeric_limits<double>::infinity());
   EXPECT_EQ(seg.getCreaseSplit(), 0.5);
   seg.setCreaseSplit(0.0);
-  EXPECT_EQ(seg.getCreaseSplit(), 0.0);
+  EXPECT_EQ(seg.getCreaseSplit(), 0.5);
+  seg.setCreaseSplit(std::nullopt);
+  EXPECT_EQ(seg.getCreaseSplit(), std::nullopt);
 }

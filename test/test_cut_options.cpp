@@ -46,7 +46,7 @@ std::uint32_t m(std::size_t l, std::uint32_t s) {
 
 } // namespace
 
-TEST(ConnectAllAdjacent, AddsThePairsThatMeetAtNoSaddle) {
+TEST(AdjacencyAll, AddsThePairsThatMeetAtNoSaddle) {
   SimilarityParams p;
   p.normalize_width = false;
   p.adjacency = Adjacency::Trees; // the paper's saddle edges, and the trees joined

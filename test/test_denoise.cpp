@@ -237,8 +237,8 @@ TEST(Denoise, CleanSurfacesGiveTheSameSegmentsWithAndWithout) {
   EXPECT_EQ(seg.getDenoise(), 2.0); // the default
   seg.setInputCloud(hand.cloud);
   seg.extract(with);
-  seg.setDenoise(0.0);
-  EXPECT_EQ(seg.getDenoise(), 0.0);
+  seg.setDenoise(std::nullopt);
+  EXPECT_EQ(seg.getDenoise(), std::nullopt);
   seg.extract(without);
   ASSERT_EQ(with.size(), without.size());
   for (std::size_t s = 0; s < with.size(); ++s)
@@ -272,7 +272,7 @@ TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
   EXPECT_TRUE(seg.getNoiseTest().projected);
   EXPECT_FALSE(segments.empty());
 
-  seg.setDenoise(0.0); // off: not measured
+  seg.setDenoise(std::nullopt); // off: not measured
   seg.extract(segments);
   EXPECT_EQ(seg.getNoiseTest().residual_growth, 0.0);
   EXPECT_FALSE(seg.getNoiseTest().projected);
@@ -284,7 +284,7 @@ TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
   seg.extract(segments);
   EXPECT_GT(seg.getNoiseTest().sampling_irregularity, 0.3);
   EXPECT_FALSE(seg.getNoiseTest().irregular);
-  seg.setIrregularSampling(0.0); // off: not measured
+  seg.setIrregularSampling(std::nullopt); // off: not measured
   seg.extract(segments);
   EXPECT_EQ(seg.getNoiseTest().sampling_irregularity, 0.0);
   EXPECT_FALSE(seg.getNoiseTest().irregular);
@@ -293,14 +293,18 @@ TEST(Denoise, TheSegmenterReportsItsNoiseTest) {
 TEST(Denoise, SetterRejectsBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setDenoise(1.5);
-  for (double bad : {1.0, 0.5, -2.0, std::nan("")}) {
+  for (double bad : {1.0, 0.5, 0.0, -2.0, std::nan("")}) { // 0 is no off
     seg.setDenoise(bad);
     EXPECT_EQ(seg.getDenoise(), 1.5);
   }
   EXPECT_EQ(seg.getIrregularSampling(), 0.3); // the default
   seg.setIrregularSampling(0.25);
-  for (double bad : {-0.1, std::nan("")}) {
+  for (double bad : {0.0, -0.1, std::nan("")}) {
     seg.setIrregularSampling(bad);
     EXPECT_EQ(seg.getIrregularSampling(), 0.25);
   }
+  seg.setDenoise(std::nullopt);
+  seg.setIrregularSampling(std::nullopt);
+  EXPECT_EQ(seg.getDenoise(), std::nullopt);
+  EXPECT_EQ(seg.getIrregularSampling(), std::nullopt);
 }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <optional>
 
 using namespace pcl_ncut_seg;
 using test::edgeWeight;
@@ -103,13 +104,13 @@ TEST(FlatPatches, SetterRejectsBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   EXPECT_EQ(seg.getFlatElongation(), 0.1);
   seg.setFlatElongation(0.25);
-  for (double bad :
-       {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (double bad : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
     seg.setFlatElongation(bad);
     EXPECT_EQ(seg.getFlatElongation(), 0.25);
   }
-  seg.setFlatElongation(0.0);
-  EXPECT_EQ(seg.getFlatElongation(), 0.0);
+  seg.setFlatElongation(std::nullopt);
+  EXPECT_EQ(seg.getFlatElongation(), std::nullopt);
 }
 
 TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
@@ -126,12 +127,13 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
     const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = sampledCloud(cup, 6000, seed);
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
-    seg.setIrregularSampling(0.0);
-    seg.setNeckExponent(0.0); // the largest-gap rule, which keeps every nearly free cut
+    seg.setIrregularSampling(std::nullopt);
+    // The largest-gap rule, which keeps every nearly free cut.
+    seg.setStoppingRule(pcl_ncut_seg::StoppingRule::LargestGap);
     std::vector<pcl::PointIndices> segments;
     std::size_t chips[2], count[2];
     for (int flat = 0; flat < 2; ++flat) {
-      seg.setFlatElongation(flat ? 0.1 : 0.0);
+      seg.setFlatElongation(flat ? std::optional<double>(0.1) : std::nullopt);
       seg.extract(segments);
       count[flat] = segments.size();
       // Splits made below the largest-gap rule's floor (3e-3): nearly free cuts.
@@ -149,7 +151,7 @@ TEST(FlatPatches, FewerNearlyFreeCutsOnAnOpenCup) {
 
 TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
   // Without flat patches, the chips of the test above have long boundaries for their size:
-  // the short-cut stopping rule (setNeckExponent, on by default) keeps fewer of them than the
+  // the short-cut stopping rule (the default) keeps fewer of them than the
   // largest-gap rule (6 / 15 / 18 segments to 6 / 12 / 14 over the three seeds: as many on
   // seed 1, never more). With flat
   // patches, the cuts left are around the rim, a ridge of the centrality, whose boundaries are
@@ -163,20 +165,21 @@ TEST(FlatPatches, TheShortCutRuleKeepsFewerCutsOnAnOpenCup) {
     const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = sampledCloud(cup, 6000, seed);
     pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
     seg.setInputCloud(cloud);
-    seg.setIrregularSampling(0.0);
+    seg.setIrregularSampling(std::nullopt);
     seg.setStarts(1);
     std::vector<pcl::PointIndices> segments;
-    for (const double flat : {0.0, 0.1}) {
+    for (const std::optional<double> flat : {std::optional<double>(), std::optional<double>(0.1)}) {
       seg.setFlatElongation(flat);
       std::size_t count[2];
       for (int rule = 0; rule < 2; ++rule) {
-        seg.setNeckExponent(rule ? 3.0 : 0.0);
+        seg.setStoppingRule(rule ? pcl_ncut_seg::StoppingRule::ShortCut
+                                 : pcl_ncut_seg::StoppingRule::LargestGap);
         seg.extract(segments);
         count[rule] = segments.size();
       }
-      std::cout << "seed " << seed << ", flat " << flat << ": " << count[0]
+      std::cout << "seed " << seed << ", flat patches " << (flat ? "on" : "off") << ": " << count[0]
                 << " segments with the largest gap, " << count[1] << " with the short-cut rule\n";
-      if (flat == 0.0) {
+      if (!flat) {
         EXPECT_LE(count[1], count[0]) << "seed " << seed;
         total[0] += count[0];
         total[1] += count[1];

@@ -23,6 +23,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <set>
 #include <string>
@@ -52,7 +53,8 @@ std::vector<ParamCase> validEdges() {
                [](const Seg& s) { return s.getNumberOfNeighbours() == 2; }});
   v.push_back({"setNumberOfNeighbours", [](Seg& s) { s.setNumberOfNeighbours(INT_MAX); },
                [](const Seg& s) { return s.getNumberOfNeighbours() == INT_MAX; }});
-  for (int n : {0, 1, INT_MAX})
+  for (std::optional<int> n :
+       {std::optional<int>(), std::optional<int>(1), std::optional<int>(INT_MAX)})
     v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
                  [n](const Seg& s) { return s.getNumberOfSamples() == n; }});
   for (float f : {0.0f, 1.0f}) {
@@ -74,16 +76,20 @@ std::vector<ParamCase> validEdges() {
   for (double x : {0.0, dmax})
     v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
                  [x](const Seg& s) { return s.getThreshold() == x; }});
-  for (int n : {0, 1, INT_MAX})
+  for (int n : {1, INT_MAX})
     v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
-                 [n](const Seg& s) { return s.getNumberOfSegments() == n; }});
+                 [n](const Seg& s) {
+                   return s.getNumberOfSegments() == n &&
+                          s.getStoppingRule() == pcl_ncut_seg::StoppingRule::Count;
+                 }});
   for (int n : {1, INT_MAX})
     v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
                  [n](const Seg& s) { return s.getNumberOfSplitValues() == n; }});
   for (unsigned n : {0u, 1u, 64u, UINT_MAX})
     v.push_back({"setNumberOfThreads", [n](Seg& s) { s.setNumberOfThreads(n); },
                  [n](const Seg& s) { return s.getNumberOfThreads() == n; }});
-  for (double x : {0.0, 0.5})
+  for (std::optional<double> x :
+       {std::optional<double>(), std::optional<double>(dmin), std::optional<double>(0.5)})
     v.push_back({"setMinSegmentFraction", [x](Seg& s) { s.setMinSegmentFraction(x); },
                  [x](const Seg& s) { return s.getMinSegmentFraction() == x; }});
   for (int n : {1, INT_MAX})
@@ -92,7 +98,7 @@ std::vector<ParamCase> validEdges() {
   for (double x : {dmin, dmax})
     v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
                  [x](const Seg& s) { return s.getGapFloor() == x; }});
-  for (double x : {0.0, dmax})
+  for (double x : {dmin, dmax})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
                  [x](const Seg& s) { return s.getNeckExponent() == x; }});
   for (double x : {dmin, dmax})
@@ -126,9 +132,9 @@ std::vector<ParamCase> justPast() {
   for (int k : {1, 0, -1, INT_MIN})
     v.push_back({"setNumberOfNeighbours", [k](Seg& s) { s.setNumberOfNeighbours(k); },
                  [](const Seg& s) { return s.getNumberOfNeighbours() != 10; }});
-  for (int n : {-1, INT_MIN})
+  for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
-                 [](const Seg& s) { return s.getNumberOfSamples() != 0; }});
+                 [](const Seg& s) { return s.getNumberOfSamples() != std::nullopt; }});
   for (float f : {std::nextafter(0.0f, -1.0f), std::nextafter(1.0f, 2.0f), kNaN, kInf}) {
     v.push_back({"setCrossingFraction", [f](Seg& s) { s.setCrossingFraction(f); },
                  [](const Seg& s) { return s.getCrossingFraction() != 0.3f; }});
@@ -148,13 +154,16 @@ std::vector<ParamCase> justPast() {
   for (double x : {-dmin, dinf, dnan})
     v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
                  [](const Seg& s) { return s.getThreshold() != Seg().getThreshold(); }});
-  for (int n : {-1, INT_MIN})
+  for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
-                 [](const Seg& s) { return s.getNumberOfSegments() != 0; }});
+                 [](const Seg& s) {
+                   return s.getNumberOfSegments() != Seg().getNumberOfSegments() ||
+                          s.getStoppingRule() != Seg().getStoppingRule();
+                 }});
   for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
                  [](const Seg& s) { return s.getNumberOfSplitValues() != 100; }});
-  for (double x : {-dmin, std::nextafter(0.5, 1.0), dinf, dnan})
+  for (double x : {0.0, -dmin, std::nextafter(0.5, 1.0), dinf, dnan})
     v.push_back(
         {"setMinSegmentFraction", [x](Seg& s) { s.setMinSegmentFraction(x); },
          [](const Seg& s) { return s.getMinSegmentFraction() != Seg().getMinSegmentFraction(); }});
@@ -164,9 +173,12 @@ std::vector<ParamCase> justPast() {
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
                  [](const Seg& s) { return s.getGapFloor() != Seg().getGapFloor(); }});
-  for (double x : {-dmin, dinf, dnan})
+  for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
-                 [](const Seg& s) { return s.getNeckExponent() != Seg().getNeckExponent(); }});
+                 [](const Seg& s) {
+                   return s.getNeckExponent() != Seg().getNeckExponent() ||
+                          s.getStoppingRule() != Seg().getStoppingRule();
+                 }});
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
                  [](const Seg& s) { return s.getNeckBound() != Seg().getNeckBound(); }});
@@ -235,7 +247,8 @@ Fingerprint fingerprint(const Cloud::Ptr& cloud, unsigned threads, int segments)
   Seg seg;
   seg.setInputCloud(cloud);
   seg.setNumberOfThreads(threads);
-  seg.setNumberOfSegments(segments);
+  if (segments > 0)
+    seg.setNumberOfSegments(segments);
   Segments out;
   seg.extract(out);
   Fingerprint f;

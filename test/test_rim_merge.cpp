@@ -281,7 +281,7 @@ WithAndWithout segmentWithAndWithoutMerge(const pcl::PointCloud<pcl::PointXYZ>::
   seg.setInputCloud(cloud);
   seg.setNumberOfThreads(2);
   seg.extract(r.merged);
-  seg.setRimMerge(0.0);
+  seg.setRimMerge(std::nullopt);
   seg.extract(r.unmerged);
   return r;
 }
@@ -329,15 +329,17 @@ TEST(RimMerge, AWholeSurfaceIsNoView) {
 
 TEST(RimMerge, SetterKeepsTheOldValueOnABadOne) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 10.0);
+  EXPECT_EQ(seg.getRimMerge(), 10.0);
   seg.setRimMerge(-1.0);
-  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 10.0);
+  EXPECT_EQ(seg.getRimMerge(), 10.0);
   seg.setRimMerge(200.0);
-  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 10.0);
+  EXPECT_EQ(seg.getRimMerge(), 10.0);
   seg.setRimMerge(5.0);
-  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 5.0);
+  EXPECT_EQ(seg.getRimMerge(), 5.0);
   seg.setRimMerge(0.0);
-  EXPECT_DOUBLE_EQ(seg.getRimMerge(), 0.0);
+  EXPECT_EQ(seg.getRimMerge(), 5.0);
+  seg.setRimMerge(std::nullopt);
+  EXPECT_EQ(seg.getRimMerge(), std::nullopt);
 }
 
 TEST(RimMerge, TheSameForAnyThreadCount) {

@@ -154,7 +154,7 @@ TEST(Robustness, OrganizedCloudWithNanHoles) {
   expectPartition(merged.segments, *organized);
   // Without the rim merge, which only an organized cloud's rim allows here (core/rim_merge.h):
   // the same segmentation as the cloud without the holes.
-  seg.setRimMerge(0.0);
+  seg.setRimMerge(std::nullopt);
   Extracted r = extractCapturing(seg);
   ASSERT_FALSE(r.segments.empty()) << r.err;
   expectPartition(r.segments, *organized);
@@ -165,7 +165,7 @@ TEST(Robustness, OrganizedCloudWithNanHoles) {
   for (const auto& segment : r.segments) // the merge joins whole segments
     for (int i : segment.indices)
       EXPECT_EQ(merged_of[i], merged_of[segment.indices[0]]);
-  const Segments clean = segment(dense, [](Seg& s) { s.setRimMerge(0.0); });
+  const Segments clean = segment(dense, [](Seg& s) { s.setRimMerge(std::nullopt); });
   ASSERT_EQ(clean.size(), r.segments.size());
   for (std::size_t s = 0; s < clean.size(); ++s) {
     ASSERT_EQ(clean[s].indices.size(), r.segments[s].indices.size());

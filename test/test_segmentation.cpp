@@ -169,7 +169,8 @@ TEST(Segmentation, SettersRejectBadValuesAndKeepTheOldOnes) {
   seg.setNumberOfNeighbours(1);
   EXPECT_EQ(seg.getNumberOfNeighbours(), 10);
   seg.setNumberOfSamples(-1);
-  EXPECT_EQ(seg.getNumberOfSamples(), 0);
+  seg.setNumberOfSamples(0);
+  EXPECT_EQ(seg.getNumberOfSamples(), std::nullopt); // ceil(sqrt(n)), the default
   seg.setCrossingFraction(1.5f);
   seg.setCrossingFraction(std::numeric_limits<float>::quiet_NaN());
   EXPECT_FLOAT_EQ(seg.getCrossingFraction(), 0.3f);
@@ -185,8 +186,10 @@ TEST(Segmentation, SettersRejectBadValuesAndKeepTheOldOnes) {
   EXPECT_EQ(seg.getAlpha2(), 0.5);
   seg.setThreshold(-1);
   EXPECT_EQ(seg.getThreshold(), 0.1);
+  seg.setNumberOfSegments(0);
   seg.setNumberOfSegments(-2);
-  EXPECT_EQ(seg.getNumberOfSegments(), 0);
+  EXPECT_EQ(seg.getNumberOfSegments(), 2);
+  EXPECT_EQ(seg.getStoppingRule(), pcl_ncut_seg::StoppingRule::ShortCut) << "not the count rule";
   seg.setNumberOfSplitValues(0);
   EXPECT_EQ(seg.getNumberOfSplitValues(), 100);
   // Valid edge values are taken.
@@ -223,7 +226,7 @@ TEST(Segmentation, IntermediateResultsAreConsistent) {
   Seg seg;
   Cloud::Ptr cloud = makeHand(3000, 1).cloud;
   seg.setInputCloud(cloud);
-  seg.setBoundaryBand(0.0); // segment boundaries are supernode boundaries only without it
+  seg.setBoundaryBand(std::nullopt); // segment boundaries are supernode boundaries only without it
   std::vector<pcl::PointIndices> out;
   seg.extract(out);
   const auto f = seg.getCentrality();

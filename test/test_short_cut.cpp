@@ -139,7 +139,7 @@ TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
     return neck_value;
   };
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
-  EXPECT_EQ(calls, 0) << "exponent 0: the largest gap, no neck measured";
+  EXPECT_EQ(calls, 0) << "the largest gap: no neck measured";
   p.rule = StoppingRule::ShortCut;
   p.neck_exponent = 3.0;
   // Short boundaries: the cheap splits are worth it, the dear ones (NCut about 1) are not.
@@ -170,22 +170,20 @@ TEST(ShortCut, SettersRejectBadValues) {
   EXPECT_EQ(seg.getNeckBound(), 0.25);
   seg.setNeckExponent(2.0);
   seg.setNeckBound(0.5);
-  for (double bad :
-       {-0.1, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+  for (double bad : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
     seg.setNeckExponent(bad);
     EXPECT_EQ(seg.getNeckExponent(), 2.0);
     seg.setNeckBound(bad);
     EXPECT_EQ(seg.getNeckBound(), 0.5);
   }
-  seg.setNeckBound(0.0);
-  EXPECT_EQ(seg.getNeckBound(), 0.5);
-  seg.setNeckExponent(0.0);
-  EXPECT_EQ(seg.getNeckExponent(), 0.0);
+  // 0 is no exponent: the largest-gap rule is a rule of its own (setStoppingRule).
+  EXPECT_EQ(seg.getStoppingRule(), pcl_ncut_seg::StoppingRule::ShortCut);
 }
 
 TEST(ShortCut, TheOptionReachesTheSegmentation) {
   // A generated hand: the fingers are cut off across their narrow bases. A bound no split
-  // reaches leaves one segment; the exponent 0 is the largest-gap rule.
+  // reaches leaves one segment; then the largest-gap rule.
   const auto hand = pcl_ncut_seg::test::makeHand(4000, 1);
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(hand.cloud);
@@ -196,7 +194,7 @@ TEST(ShortCut, TheOptionReachesTheSegmentation) {
   seg.extract(segments);
   EXPECT_EQ(segments.size(), 1u);
   seg.setNeckBound(0.25);
-  seg.setNeckExponent(0.0);
+  seg.setStoppingRule(pcl_ncut_seg::StoppingRule::LargestGap);
   seg.extract(segments);
   const std::size_t largest_gap = segments.size();
   std::cout << "generated hand (6 parts): " << by_default << " segments with the short-cut rule, "

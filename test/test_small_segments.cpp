@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 using namespace pcl_ncut_seg;
@@ -133,7 +134,8 @@ TEST(JoinSmallSegments, AnIslandStaysAndNothingSmallChangesNothing) {
 namespace {
 
 std::vector<pcl::PointIndices> segmentView(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
-                                           double rim_merge, double small) {
+                                           std::optional<double> rim_merge,
+                                           std::optional<double> small) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(cloud);
   seg.setNumberOfThreads(2);
@@ -152,8 +154,8 @@ TEST(ViewSmallSegment, JoinsOnlyWholeSegmentsAndLeavesNoSmallOneInAView) {
   for (const auto& p : *cloud)
     valid += std::isfinite(p.x);
   // Without the rim merge the view's rim and the bump cut the disc into pieces.
-  const std::vector<pcl::PointIndices> off = segmentView(cloud, 0.0, 0.0);
-  const std::vector<pcl::PointIndices> on = segmentView(cloud, 0.0, 0.05);
+  const std::vector<pcl::PointIndices> off = segmentView(cloud, std::nullopt, std::nullopt);
+  const std::vector<pcl::PointIndices> on = segmentView(cloud, std::nullopt, 0.05);
   std::cout << "[ INFO     ] bumpy disc view: " << off.size() << " segments, " << on.size()
             << " with small segments (below 10% of the view) joined\n";
   ASSERT_GT(off.size(), on.size());
@@ -183,7 +185,7 @@ TEST(ViewSmallSegment, AWholeSurfaceIsNoView) {
   std::vector<pcl::PointIndices> on, off;
   seg.setViewSmallSegment(0.2);
   seg.extract(on);
-  seg.setViewSmallSegment(0.0);
+  seg.setViewSmallSegment(std::nullopt);
   seg.extract(off);
   ASSERT_EQ(on.size(), off.size());
   EXPECT_GT(on.size(), 1u);
@@ -193,17 +195,19 @@ TEST(ViewSmallSegment, AWholeSurfaceIsNoView) {
 
 TEST(ViewSmallSegment, SetterKeepsTheOldValueOnABadOne) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  EXPECT_EQ(seg.getViewSmallSegment(), 0.01);
   seg.setViewSmallSegment(-0.1);
-  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  EXPECT_EQ(seg.getViewSmallSegment(), 0.01);
   seg.setViewSmallSegment(0.6);
-  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  EXPECT_EQ(seg.getViewSmallSegment(), 0.01);
   seg.setViewSmallSegment(std::numeric_limits<double>::quiet_NaN());
-  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.01);
+  EXPECT_EQ(seg.getViewSmallSegment(), 0.01);
   seg.setViewSmallSegment(0.05);
-  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.05);
+  EXPECT_EQ(seg.getViewSmallSegment(), 0.05);
   seg.setViewSmallSegment(0.0);
-  EXPECT_DOUBLE_EQ(seg.getViewSmallSegment(), 0.0);
+  EXPECT_EQ(seg.getViewSmallSegment(), 0.05);
+  seg.setViewSmallSegment(std::nullopt);
+  EXPECT_EQ(seg.getViewSmallSegment(), std::nullopt);
 }
 
 TEST(ViewSmallSegment, TheOpenViewStagesDoNotChangeHowAViewIsAnalysed) {
@@ -216,8 +220,8 @@ TEST(ViewSmallSegment, TheOpenViewStagesDoNotChangeHowAViewIsAnalysed) {
   on.setInputCloud(cloud);
   on.extract(out);
   ASSERT_TRUE(on.getNoiseTest().projected);
-  off.setRimMerge(0.0);
-  off.setViewSmallSegment(0.0);
+  off.setRimMerge(std::nullopt);
+  off.setViewSmallSegment(std::nullopt);
   off.setInputCloud(cloud);
   off.extract(out);
   const std::vector<float> with = on.getCentrality(), without = off.getCentrality();

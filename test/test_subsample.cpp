@@ -266,9 +266,9 @@ TEST(Subsample, ThePclClassAnalysesAtMostMaxPointsAndLabelsEveryPoint) {
 TEST(Subsample, TheSetterKeepsItsOldValueOnABadOne) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setMaxPoints(20000);
-  for (int bad : {-1, 1, 99})
+  for (int bad : {0, -1, 1, 99})
     seg.setMaxPoints(bad);
   EXPECT_EQ(seg.getMaxPoints(), 20000);
-  seg.setMaxPoints(0); // off: every point
-  EXPECT_EQ(seg.getMaxPoints(), 0);
+  seg.setMaxPoints(std::nullopt); // off: every point
+  EXPECT_EQ(seg.getMaxPoints(), std::nullopt);
 }

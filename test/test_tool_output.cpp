@@ -63,7 +63,7 @@ TEST_F(ToolTest, ProgressBarOnATerminalOnly) {
     EXPECT_EQ(std::system(cmd.c_str()), 0);
     return readText(typescript);
   };
-  const std::string shown = onTerminal("shape.pcd out.pcd -segments 3 -cen_samples 200");
+  const std::string shown = onTerminal("shape.pcd out.pcd -segments 3 -centrality_samples 200");
   EXPECT_NE(shown.find("Cen   ["), std::string::npos) << shown;
   EXPECT_NE(shown.find("%"), std::string::npos) << shown;
   EXPECT_NE(shown.find("\r\x1b[K"), std::string::npos) << "the bar is not cleared";

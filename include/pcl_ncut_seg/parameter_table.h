@@ -37,7 +37,6 @@ struct ParameterInfo {
   std::string off_word;             ///< an optional field: the word for nullopt ("off", "auto")
   std::vector<std::string> choices; ///< Choice: the words, in the enum's order
   bool paper = false;               ///< a parameter of the paper itself (not an extension)
-  std::vector<std::string> aliases; ///< other accepted spellings (older flags)
 
   /// The value as text, as parseValue() reads it back (shortest exact decimal for numbers).
   std::function<std::string(const Parameters&)> get;
@@ -51,7 +50,7 @@ struct ParameterInfo {
 /** \brief Every parameter, grouped by stage in pipeline order. */
 const std::vector<ParameterInfo>& parameterTable();
 
-/** \brief The row with this name or alias (without the leading '-'), or nullptr. */
+/** \brief The row with this name (without the leading '-'), or nullptr. */
 const ParameterInfo* findParameter(const std::string& name);
 
 /** \brief A shorthand switch of the tools: a flag that sets one parameter to one value
@@ -61,7 +60,7 @@ struct Shorthand {
 };
 const std::vector<Shorthand>& parameterShorthands();
 
-/** \brief Set the parameter called name (or an alias) from text; false (params unchanged) with
+/** \brief Set the parameter called name from text; false (params unchanged) with
  * the reason, "k must be an integer >= 2, got 1", or "unknown parameter 'x'". */
 bool setParameter(Parameters& params, const std::string& name, const std::string& text,
                   std::string* why = nullptr);

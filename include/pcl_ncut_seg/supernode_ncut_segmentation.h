@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -91,15 +92,16 @@ public:
   /// \name Single parameters
   /// Thin wrappers of setParameters(): each sets one field of pcl_ncut_seg::Parameters (its
   /// meaning, default and range are documented there and in the README's table), rejects a bad
-  /// value with a PCL_ERROR and keeps the old one. Where an older release took 0 for "off",
-  /// the setter still does (the field then holds std::nullopt or the matching mode).
+  /// value with a PCL_ERROR and keeps the old one. An extension that can be off takes and
+  /// returns a std::optional: std::nullopt turns it off, and 0, where the range leaves it
+  /// out, is rejected like any other bad value.
   /// \{
   /** \param[in] k  graph.k, >= 2 */
   void setNumberOfNeighbours(int k);
   int getNumberOfNeighbours() const { return params_.graph.k; }
-  /** \param[in] samples  centrality.samples, >= 1; 0: ceil(sqrt(n)) as in the paper */
-  void setNumberOfSamples(int samples);
-  int getNumberOfSamples() const { return params_.centrality.samples.value_or(0); }
+  /** \param[in] samples  centrality.samples, >= 1; std::nullopt: ceil(sqrt(n)) as in the paper */
+  void setNumberOfSamples(std::optional<int> samples);
+  std::optional<int> getNumberOfSamples() const { return params_.centrality.samples; }
   /** \param[in] mode  centrality.mode */
   void setCentralityMode(pcl_ncut_seg::CentralityMode mode);
   pcl_ncut_seg::CentralityMode getCentralityMode() const { return params_.centrality.mode; }
@@ -131,35 +133,32 @@ public:
   /** \param[in] threshold  stopping.threshold, >= 0 */
   void setThreshold(double threshold);
   double getThreshold() const { return params_.stopping.threshold; }
-  /** \param[in] fraction  stopping.min_segment_fraction, in [0, 0.5]; 0: off */
-  void setMinSegmentFraction(double fraction);
-  double getMinSegmentFraction() const {
-    return params_.stopping.min_segment_fraction.value_or(0.0);
+  /** \param[in] fraction  stopping.min_segment_fraction, in (0, 0.5]; std::nullopt: off */
+  void setMinSegmentFraction(std::optional<double> fraction);
+  std::optional<double> getMinSegmentFraction() const {
+    return params_.stopping.min_segment_fraction;
   }
   /** \param[in] rule  stopping.rule */
   void setStoppingRule(pcl_ncut_seg::StoppingRule rule);
   pcl_ncut_seg::StoppingRule getStoppingRule() const { return params_.stopping.rule; }
-  /** \param[in] enable  true: the short-cut rule (or the largest gap after
-   * setNeckExponent(0)); false: the threshold rule. No effect while a count is asked for. */
-  void setLargestGapStopping(bool enable);
-  bool getLargestGapStopping() const;
   /** \param[in] segments  stopping.max_segments, >= 1 */
   void setMaxSegments(int segments);
   int getMaxSegments() const { return params_.stopping.max_segments; }
   /** \param[in] floor  stopping.gap_floor, > 0 */
   void setGapFloor(double floor);
   double getGapFloor() const { return params_.stopping.gap_floor; }
-  /** \param[in] exponent  stopping.neck_exponent, > 0; 0: the largest-gap rule instead of
-   * the short-cut rule */
+  /** \param[in] exponent  stopping.neck_exponent, > 0 (read by the short-cut rule) */
   void setNeckExponent(double exponent);
-  double getNeckExponent() const;
+  double getNeckExponent() const { return params_.stopping.neck_exponent; }
   /** \param[in] bound  stopping.neck_bound, > 0 */
   void setNeckBound(double bound);
   double getNeckBound() const { return params_.stopping.neck_bound; }
-  /** \param[in] segments  > 0: the count rule with this many segments; 0: back to the
-   * default rule if the count rule was in use */
+  /** \brief Ask for a number of segments: stopping.segments, and the count rule (as the tools'
+   * -segments). Another rule is chosen with setStoppingRule().
+   * \param[in] segments  stopping.segments, >= 1 */
   void setNumberOfSegments(int segments);
-  int getNumberOfSegments() const;
+  /** \brief stopping.segments, which only the count rule reads (getStoppingRule()). */
+  int getNumberOfSegments() const { return params_.stopping.segments; }
   /** \param[in] values  stopping.num_splits, >= 1 */
   void setNumberOfSplitValues(int values);
   int getNumberOfSplitValues() const { return params_.stopping.num_splits; }
@@ -169,16 +168,6 @@ public:
   /** \param[in] adjacency  similarity.adjacency */
   void setAdjacency(pcl_ncut_seg::Adjacency adjacency);
   pcl_ncut_seg::Adjacency getAdjacency() const { return params_.similarity.adjacency; }
-  /** \param[in] connect  true: at least Adjacency::Trees; false: Adjacency::Saddles */
-  void setConnectAdjacentTrees(bool connect);
-  bool getConnectAdjacentTrees() const {
-    return params_.similarity.adjacency != pcl_ncut_seg::Adjacency::Saddles;
-  }
-  /** \param[in] connect  true: Adjacency::All; false: Adjacency::Trees if All was set */
-  void setConnectAllAdjacent(bool connect);
-  bool getConnectAllAdjacent() const {
-    return params_.similarity.adjacency == pcl_ncut_seg::Adjacency::All;
-  }
   /** \param[in] share  similarity.adjacent_share, in [0, 1] */
   void setAdjacentShare(double share);
   double getAdjacentShare() const { return params_.similarity.adjacent_share; }
@@ -189,37 +178,38 @@ public:
   /** \param[in] degrees  similarity.face_angle, in (0, 90]; only the cut reads it */
   void setFaceAngle(float degrees);
   float getFaceAngle() const { return params_.similarity.face_angle; }
-  /** \param[in] radii  graph.bridge_gap, > 0; 0: off */
-  void setBridgeGap(double radii);
-  double getBridgeGap() const { return params_.graph.bridge_gap.value_or(0.0); }
+  /** \param[in] radii  graph.bridge_gap, > 0; std::nullopt: off */
+  void setBridgeGap(std::optional<double> radii);
+  std::optional<double> getBridgeGap() const { return params_.graph.bridge_gap; }
   /** \brief Sensor noise (core/denoise.h): a cloud whose local plane fits scatter less than
    * growth times more over the 2-ring than over the 1-ring counts as noisy, and its points are
    * projected onto their 2-ring's planes before anything is measured.
-   * \param[in] growth  graph.denoise, > 1; 0: off */
-  void setDenoise(double growth);
-  double getDenoise() const { return params_.graph.denoise.value_or(0.0); }
+   * \param[in] growth  graph.denoise, > 1; std::nullopt: off */
+  void setDenoise(std::optional<double> growth);
+  std::optional<double> getDenoise() const { return params_.graph.denoise; }
   /** \brief Irregular sampling (core/denoise.h): when the points' spacings vary at least this
    * much (samplingIrregularity(): about 0.45 for points drawn at random, 0.05-0.2 for points
    * spread evenly; 0.3 between them), the centrality of a whole surface is averaged over each
    * point's neighbourhood once, as on a noisy one. 0.3 by default (docs/sampling.md).
-   * \param[in] variation  graph.irregular_sampling, > 0 (default 0.3); 0: off (the paper) */
-  void setIrregularSampling(double variation);
-  double getIrregularSampling() const { return params_.graph.irregular_sampling.value_or(0.0); }
+   * \param[in] variation  graph.irregular_sampling, > 0 (default 0.3); std::nullopt: off (the
+   * paper) */
+  void setIrregularSampling(std::optional<double> variation);
+  std::optional<double> getIrregularSampling() const { return params_.graph.irregular_sampling; }
   /** \brief The analysis' resolution (core/subsample.h): a cloud of more distinct points is
    * analysed on an even subset of at most this many (one per cube of a grid, whatever their
    * order), and every other point takes the segment of its nearest analysed point.
-   * \param[in] points  graph.max_points, >= 100; 0: off (every point is analysed) */
-  void setMaxPoints(int points);
-  int getMaxPoints() const { return params_.graph.max_points.value_or(0); }
-  /** \param[in] weight  similarity.concavity, > 0; 0: off */
-  void setConcavityWeight(double weight);
-  double getConcavityWeight() const { return params_.similarity.concavity.value_or(0.0); }
-  /** \param[in] elongation  similarity.flat_elongation, > 0; 0: off */
-  void setFlatElongation(double elongation);
-  double getFlatElongation() const { return params_.similarity.flat_elongation.value_or(0.0); }
-  /** \param[in] fraction  boundary.band, in (0, 0.5]; 0: off */
-  void setBoundaryBand(double fraction);
-  double getBoundaryBand() const { return params_.boundary.band.value_or(0.0); }
+   * \param[in] points  graph.max_points, >= 100; std::nullopt: off (every point is analysed) */
+  void setMaxPoints(std::optional<int> points);
+  std::optional<int> getMaxPoints() const { return params_.graph.max_points; }
+  /** \param[in] weight  similarity.concavity, > 0; std::nullopt: off */
+  void setConcavityWeight(std::optional<double> weight);
+  std::optional<double> getConcavityWeight() const { return params_.similarity.concavity; }
+  /** \param[in] elongation  similarity.flat_elongation, > 0; std::nullopt: off */
+  void setFlatElongation(std::optional<double> elongation);
+  std::optional<double> getFlatElongation() const { return params_.similarity.flat_elongation; }
+  /** \param[in] fraction  boundary.band, in (0, 0.5]; std::nullopt: off */
+  void setBoundaryBand(std::optional<double> fraction);
+  std::optional<double> getBoundaryBand() const { return params_.boundary.band; }
   /** \param[in] weight  boundary.crease_weight, >= 0 */
   void setBoundaryCreaseWeight(double weight);
   double getBoundaryCreaseWeight() const { return params_.boundary.crease_weight; }
@@ -227,21 +217,21 @@ public:
    * origin, two touching segments, one of which reaches the view's rim, are merged when the
    * planes of their boundary's two sides meet at a concave angle below this and the boundary
    * is no limb's neck.
-   * \param[in] degrees  boundary.rim_merge, in (0, 180]; 0: off */
-  void setRimMerge(double degrees);
-  double getRimMerge() const { return params_.boundary.rim_merge.value_or(0.0); }
+   * \param[in] degrees  boundary.rim_merge, in (0, 180]; std::nullopt: off */
+  void setRimMerge(std::optional<double> degrees);
+  std::optional<double> getRimMerge() const { return params_.boundary.rim_merge; }
   /** \brief Open views (core/small_segments.h): a segment whose area is below this fraction
    * of the object's area (taken as twice the view's) joins the touching segment it shares
    * most kNN edges with.
-   * \param[in] fraction  boundary.view_small_segment, in (0, 0.5]; 0: off */
-  void setViewSmallSegment(double fraction);
-  double getViewSmallSegment() const { return params_.boundary.view_small_segment.value_or(0.0); }
-  /** \param[in] concavity  refinement.crease_split, > 0; 0: off */
-  void setCreaseSplit(double concavity);
-  double getCreaseSplit() const { return params_.refinement.crease_split.value_or(0.0); }
-  /** \param[in] share  refinement.crease_cut, in (0, 1]; 0: off */
-  void setCreaseCut(double share);
-  double getCreaseCut() const { return params_.refinement.crease_cut.value_or(0.0); }
+   * \param[in] fraction  boundary.view_small_segment, in (0, 0.5]; std::nullopt: off */
+  void setViewSmallSegment(std::optional<double> fraction);
+  std::optional<double> getViewSmallSegment() const { return params_.boundary.view_small_segment; }
+  /** \param[in] concavity  refinement.crease_split, > 0; std::nullopt: off */
+  void setCreaseSplit(std::optional<double> concavity);
+  std::optional<double> getCreaseSplit() const { return params_.refinement.crease_split; }
+  /** \param[in] share  refinement.crease_cut, in (0, 1]; std::nullopt: off */
+  void setCreaseCut(std::optional<double> share);
+  std::optional<double> getCreaseCut() const { return params_.refinement.crease_cut; }
   /** \param[in] threads  execution.num_threads; 0: all cores. The output does not depend on
    * it. */
   void setNumberOfThreads(unsigned threads);

@@ -25,7 +25,7 @@ N int32 labels: 1 to t for the t segments (numbered by their first point), 0 for
 segment: the labels of pcl::SupernodeNCutSegmentation and of the pcl_ncut_seg tool.
 
 Parameters go by the tool's flag names without the '-' (k=12, threshold=0.1, segments=6,
-crease_cut=0.5, ...; older spellings too); parameter_table() lists them. None turns an
+crease_cut=0.5, ...); parameter_table() lists them. None turns an
 optional extension off (or to auto), True/False are on/off, paper=True starts from the paper
 to the letter instead of the project's defaults. A bad array or parameter raises ValueError
 with the library's reason. Segmenter keeps the expensive stage between calls.)doc";
@@ -53,15 +53,9 @@ get_supernode_segments(), get_supernode_graph().)doc";
 
 std::string propertyDoc(const pcl_ncut_seg::ParameterInfo& row) {
   const pcl_ncut_seg::Parameters defaults, paper = pcl_ncut_seg::Parameters::paper();
-  std::string doc = row.help + ".\n\n" + row.range + "; default " + row.get(defaults) + ", paper " +
-                    row.get(paper) + "; stage " + pcl_ncut_seg::stageName(row.stage) + " (" +
-                    (pcl_ncut_seg::isAnalysisStage(row.stage) ? "analysis" : "cut") + ")";
-  if (!row.aliases.empty()) {
-    doc += "; also spelt";
-    for (const std::string& a : row.aliases)
-      doc += " " + a;
-  }
-  return doc;
+  return row.help + ".\n\n" + row.range + "; default " + row.get(defaults) + ", paper " +
+         row.get(paper) + "; stage " + pcl_ncut_seg::stageName(row.stage) + " (" +
+         (pcl_ncut_seg::isAnalysisStage(row.stage) ? "analysis" : "cut") + ")";
 }
 
 /** \brief One property per row of the table, by its name. */
@@ -98,7 +92,7 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
       },
       py::arg("points"), kSegmentDoc);
   m.def("parameter_table", &pcl_ncut_seg_python::parameterTableList,
-        "parameter_table() -> list of dict\n\nEvery parameter: name, aliases, field, stage, "
+        "parameter_table() -> list of dict\n\nEvery parameter: name, field, stage, "
         "analysis (whether changing it recomputes the expensive stage), kind, range, help, off "
         "(the word None stands for), choices, default, paper_value, in_paper.");
   m.def(
@@ -118,7 +112,7 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
           "set(**parameters)\n\nChange parameters by name, all or none (ValueError). "
           "paper=True/False first resets every parameter but threads to the paper's settings "
           "or the defaults.")
-      .def("get", &Segmenter::get, py::arg("name"), "The value of a parameter by name or alias.")
+      .def("get", &Segmenter::get, py::arg("name"), "The value of a parameter by name.")
       .def_property_readonly("parameters", &Segmenter::parameters,
                              "Every parameter's value, by name (a new dict).")
       .def(

@@ -31,7 +31,7 @@ public:
 
   /** \brief Change parameters by keyword, all or nothing. */
   void set(const py::dict& keywords);
-  /** \brief One parameter's value (a row's name or alias). */
+  /** \brief One parameter's value (by a row's name). */
   py::object get(const std::string& name) const;
   /** \brief Every parameter's value, by name. */
   py::dict parameters() const;

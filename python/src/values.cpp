@@ -151,7 +151,6 @@ py::list parameterTableList() {
   for (const ParameterInfo& r : pcl_ncut_seg::parameterTable()) {
     py::dict d;
     d["name"] = r.name;
-    d["aliases"] = py::cast(r.aliases);
     d["field"] = r.field;
     d["stage"] = pcl_ncut_seg::stageName(r.stage);
     d["analysis"] = pcl_ncut_seg::isAnalysisStage(r.stage);

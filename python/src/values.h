@@ -28,9 +28,9 @@ py::object parameterObject(const pcl_ncut_seg::ParameterInfo& row,
 
 /** \brief Apply keyword parameters in their order: paper=True or False first picks the preset
  * everything else starts from (Parameters::paper() or the defaults; the threads are kept),
- * a tool shorthand (exact=True) sets its parameter, any other keyword is a row's name or
- * alias. All or nothing: throws py::value_error with the library's reason and leaves params
- * unchanged on a bad name or value. */
+ * a tool shorthand (exact=True) sets its parameter, any other keyword is a row's name. All or
+ * nothing: throws py::value_error with the library's reason and leaves params unchanged on a
+ * bad name or value. */
 void applyKeywords(pcl_ncut_seg::Parameters& params, const py::dict& keywords);
 
 /** \brief The rows in the table's order but for segments, which comes before stopping:
@@ -40,7 +40,7 @@ std::vector<const pcl_ncut_seg::ParameterInfo*> keywordOrder();
 /** \brief {name: value} for every row, in keywordOrder(). */
 py::dict parameterDict(const pcl_ncut_seg::Parameters& params);
 
-/** \brief The table as a list of dicts (name, aliases, stage, kind, range, help, default,
+/** \brief The table as a list of dicts (name, field, stage, kind, range, help, default,
  * paper_value, in_paper, analysis). */
 py::list parameterTableList();
 

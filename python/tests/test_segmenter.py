@@ -36,8 +36,6 @@ def test_every_parameter_is_an_attribute_of_its_name():
     for row in TABLE:
         name = row["name"]
         assert getattr(seg, name) == row["default"] == seg.get(name)
-        for alias in row["aliases"]:
-            assert seg.get(alias) == row["default"]
         assert row["help"] in getattr(pcl_ncut_seg.Segmenter, name).__doc__
     # Python types: None for off/auto, bool for switches, int, float, str for choices.
     assert seg.k == 10 and isinstance(seg.k, int)
@@ -47,15 +45,13 @@ def test_every_parameter_is_an_attribute_of_its_name():
     assert seg.cad is False and seg.centrality == "fast"
 
 
-def test_setting_each_parameter_by_attribute_keyword_and_alias():
+def test_setting_each_parameter_by_attribute_and_keyword():
     for row in TABLE:
         name, value = row["name"], OTHER[row["name"]]
         seg = pcl_ncut_seg.Segmenter()
         setattr(seg, name, value)
         assert getattr(seg, name) == value, name
         assert pcl_ncut_seg.Segmenter(**{name: value}).get(name) == value
-        for alias in row["aliases"]:
-            assert pcl_ncut_seg.Segmenter(**{alias: value}).get(name) == value
         if row["off"]:
             seg.set(**{name: None})
             assert getattr(seg, name) is None

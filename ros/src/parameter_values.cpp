@@ -58,9 +58,12 @@ bool isReconfigurable(const ParameterInfo& row) {
 
 namespace {
 
-/** \brief An optional extension whose range leaves out 0: there 0 can only mean off. */
+/** \brief A reconfigurable optional extension whose range leaves out 0. dynamic_reconfigure
+ * holds numbers only, and writes them to the parameter server too: there 0 stands for off.
+ * Elsewhere off is spelt off (or false, as YAML reads off), as in the table. */
 bool zeroIsOff(const ParameterInfo& row) {
-  if (row.off_word.empty() || (row.kind != ValueKind::Integer && row.kind != ValueKind::Real))
+  if (!isReconfigurable(row) || row.off_word.empty() ||
+      (row.kind != ValueKind::Integer && row.kind != ValueKind::Real))
     return false;
   const bool above_lo = row.lo_open ? 0 > row.lo : 0 >= row.lo;
   const bool below_hi = row.hi_open ? 0 < row.hi : 0 <= row.hi;

@@ -73,11 +73,8 @@ int readParameters(const ros::NodeHandle& private_nh, Parameters& params,
   for (const std::string& name : privateNames(private_nh)) {
     if (std::find(other_names.begin(), other_names.end(), name) != other_names.end())
       continue;
-    const ParameterInfo* row = pcl_ncut_seg::findParameter(name);
-    if (!row)
+    if (!pcl_ncut_seg::findParameter(name))
       ROS_WARN("~%s is no parameter of the segmentation; it is ignored", name.c_str());
-    else if (row->name != name)
-      ROS_WARN("~%s is ignored: its name is ~%s", name.c_str(), row->name.c_str());
   }
   return rejected;
 }

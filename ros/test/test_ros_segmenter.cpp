@@ -85,7 +85,11 @@ TEST(RosValues, NumbersBooleansAndOff) {
   EXPECT_EQ(text("boundary_band", Value::ofText("off")), "off");
   EXPECT_EQ(text("boundary_band", Value::ofBoolean(false)), "off"); // YAML's off
   EXPECT_EQ(text("boundary_band", Value::ofReal(0.0)), "off");      // dynamic_reconfigure's
-  EXPECT_EQ(text("centrality_samples", Value::ofInteger(0)), "auto");
+  // Not reconfigurable: off is off or false, and 0 is a number (out of its range).
+  EXPECT_EQ(text("centrality_samples", Value::ofText("auto")), "auto");
+  EXPECT_EQ(text("centrality_samples", Value::ofBoolean(false)), "auto");
+  EXPECT_EQ(text("centrality_samples", Value::ofInteger(0)), "0");
+  EXPECT_EQ(text("crease_cut", Value::ofReal(0.0)), "0");
   EXPECT_EQ(text("cad", Value::ofBoolean(true)), "on");
   EXPECT_EQ(text("normalize_width", Value::ofBoolean(false)), "off");
   EXPECT_EQ(text("stopping", Value::ofText("count")), "count");
@@ -106,6 +110,11 @@ TEST(RosValues, SetFromValueRejectsOutOfRangeAndKeepsTheValue) {
   EXPECT_NE(why.find("boundary_band must be a number in (0, 0.5] or off"), std::string::npos);
   ASSERT_TRUE(setFromValue(p, row("boundary_band"), Value::ofReal(0.0), &why));
   EXPECT_FALSE(p.boundary.band.has_value());
+  EXPECT_FALSE(setFromValue(p, row("bridge_gap"), Value::ofReal(0.0), &why));
+  EXPECT_EQ(why, "bridge_gap must be a number > 0 or off, got '0'");
+  EXPECT_EQ(p.graph.bridge_gap, 3.0);
+  ASSERT_TRUE(setFromValue(p, row("bridge_gap"), Value::ofBoolean(false), &why));
+  EXPECT_FALSE(p.graph.bridge_gap.has_value());
   ASSERT_TRUE(setFromValue(p, row("segments"), Value::ofInteger(4), &why));
   EXPECT_EQ(p.stopping.rule, pcl_ncut_seg::StoppingRule::Count);
 }

@@ -77,8 +77,7 @@ template <typename T> std::string numberText(T v) {
 
 /** \brief Common fields of a row. */
 inline ParameterInfo row(const char* name, const char* field, Stage stage, ValueKind kind,
-                         const char* value_name, const char* help, bool paper,
-                         std::vector<std::string> aliases = {}) {
+                         const char* value_name, const char* help, bool paper) {
   ParameterInfo r;
   r.name = name;
   r.field = field;
@@ -87,7 +86,6 @@ inline ParameterInfo row(const char* name, const char* field, Stage stage, Value
   r.value_name = value_name;
   r.help = help;
   r.paper = paper;
-  r.aliases = std::move(aliases);
   return r;
 }
 

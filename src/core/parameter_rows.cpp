@@ -25,7 +25,7 @@ void graphRows(Rows& t) {
       row("bridge_gap", "graph.bridge_gap", S::Graph, K::Real, "G",
           "join components of the kNN graph that only a sampling gap separates, by their "
           "shortest point pair when it is at most G kNN radii long",
-          false, {"bridge"}),
+          false),
       above(0), FIELD(graph.bridge_gap), "off"));
   t.push_back(number<double, std::optional<double>>(
       row("denoise", "graph.denoise", S::Graph, K::Real, "G",
@@ -67,8 +67,7 @@ void graphRows(Rows& t) {
 void centralityRows(Rows& t) {
   t.push_back(number<int, std::optional<int>>(
       row("centrality_samples", "centrality.samples", S::Centrality, K::Integer, "S",
-          "centrality samples per connected component; auto: ceil(sqrt(n)) as in the paper", true,
-          {"cen_samples"}),
+          "centrality samples per connected component; auto: ceil(sqrt(n)) as in the paper", true),
       atLeast(1), FIELD(centrality.samples), "auto"));
   t.push_back(choice<CentralityMode>(
       row("centrality", "centrality.mode", S::Centrality, K::Choice, "MODE",
@@ -97,7 +96,7 @@ void supernodeRows(Rows& t) {
       row("crossing_fraction", "supernodes.crossing_fraction", S::Supernodes, K::Real, "F",
           "fraction of |N(p)| below which a supernode's neighbours of p count as reached "
           "through feature-crossing edges (Sec. 4.2 (b))",
-          true, {"crossing"}),
+          true),
       closed(0, 1), FIELD(supernodes.crossing_fraction)));
 }
 
@@ -105,27 +104,25 @@ void supernodeRows(Rows& t) {
 void refinementRows(Rows& t) {
   t.push_back(number<float, float>(
       row("area_fraction", "refinement.area_fraction", S::Refinement, K::Real, "F",
-          "small supernodes: feature area below this fraction of the total (Sec. 4.3)", true,
-          {"area"}),
+          "small supernodes: feature area below this fraction of the total (Sec. 4.3)", true),
       closed(0, 1), FIELD(refinement.area_fraction)));
   t.push_back(number<float, float>(
       row("height_fraction", "refinement.height_fraction", S::Refinement, K::Real, "F",
-          "skinny supernodes: feature height below this fraction of the largest (Sec. 4.3)", true,
-          {"height"}),
+          "skinny supernodes: feature height below this fraction of the largest (Sec. 4.3)", true),
       closed(0, 1), FIELD(refinement.height_fraction)));
   t.push_back(number<double, std::optional<double>>(
       row("crease_split", "refinement.crease_split", S::Refinement, K::Real, "C",
           "crease splits: split a supernode along its most concave level cut of the "
           "centrality when that cut's mean concave bend (in mean bends per kNN edge) is at "
           "least C",
-          false, {"crease"}),
+          false),
       above(0), FIELD(refinement.crease_split), "off"));
   t.push_back(number<double, std::optional<double>>(
       row("crease_cut", "refinement.crease_cut", S::Refinement, K::Real, "S",
           "crease cuts: split a supernode that no level cut splits along its minimum cut "
           "weighted by concave bend when a share of at least S of the edges it crosses are "
           "concave",
-          false, {"creasecut"}),
+          false),
       leftOpen(0, 1), FIELD(refinement.crease_cut), "off"));
 }
 
@@ -189,19 +186,19 @@ void similarityRows(Rows& t) {
       row("adjacent_share", "similarity.adjacent_share", S::Similarity, K::Real, "S",
           "adjacency all: a pair that meets at no saddle is joined when its contact is at "
           "least this share of the smaller total contact of the two",
-          false, {"share"}),
+          false),
       closed(0, 1), FIELD(similarity.adjacent_share)));
   t.push_back(number<double, std::optional<double>>(
       row("concavity", "similarity.concavity", S::Similarity, K::Real, "W",
           "concave creases: the weight of eq. (9) is multiplied by exp(-W c), c how concave "
           "the pair's contact is",
-          false, {"concavity_weight"}),
+          false),
       above(0), FIELD(similarity.concavity), "off"));
   t.push_back(number<double, std::optional<double>>(
       row("flat_elongation", "similarity.flat_elongation", S::Similarity, K::Real, "E",
           "flat patches: between two supernodes with feature height < E sqrt(feature area), "
           "eq. (9) leaves out the width ratio",
-          false, {"flat"}),
+          false),
       above(0), FIELD(similarity.flat_elongation), "off"));
   t.push_back(number<float, float>(
       row("face_angle", "similarity.face_angle", S::Similarity, K::Real, "DEG",
@@ -247,27 +244,26 @@ void stoppingRows(Rows& t) {
       row("min_segment_fraction", "stopping.min_segment_fraction", S::Stopping, K::Real, "F",
           "threshold rule: a part is bisected only if each side keeps this fraction of the "
           "feature area",
-          false, {"min_fraction"}),
+          false),
       leftOpen(0, 0.5), FIELD(stopping.min_segment_fraction), "off"));
+  t.push_back(number<int, int>(row("max_segments", "stopping.max_segments", S::Stopping, K::Integer,
+                                   "N", "largest_gap, short_cut: at most N segments", false),
+                               atLeast(1), FIELD(stopping.max_segments)));
   t.push_back(
-      number<int, int>(row("max_segments", "stopping.max_segments", S::Stopping, K::Integer, "N",
-                           "largest_gap, short_cut: at most N segments", false, {"maxseg"}),
-                       atLeast(1), FIELD(stopping.max_segments)));
-  t.push_back(number<double, double>(
-      row("gap_floor", "stopping.gap_floor", S::Stopping, K::Real, "F",
-          "largest_gap, short_cut: NCut values below F count as F", false, {"gapfloor"}),
-      above(0), FIELD(stopping.gap_floor)));
+      number<double, double>(row("gap_floor", "stopping.gap_floor", S::Stopping, K::Real, "F",
+                                 "largest_gap, short_cut: NCut values below F count as F", false),
+                             above(0), FIELD(stopping.gap_floor)));
   t.push_back(number<double, double>(
       row("neck_exponent", "stopping.neck_exponent", S::Stopping, K::Real, "W",
           "short_cut: a split's NCut is weighted by neck^W, neck = its boundary's length over "
           "the square root of the smaller side's area",
-          false, {"neck"}),
+          false),
       above(0), FIELD(stopping.neck_exponent)));
   t.push_back(number<double, double>(
       row("neck_bound", "stopping.neck_bound", S::Stopping, K::Real, "B",
           "short_cut: the weighted NCut below which a split is worth making (larger: more "
           "segments)",
-          false, {"neckbound"}),
+          false),
       above(0), FIELD(stopping.neck_bound)));
 }
 
@@ -277,13 +273,13 @@ void boundaryRows(Rows& t) {
       row("boundary_band", "boundary.band", S::Boundary, K::Real, "F",
           "boundary refinement: recut each pair of touching segments by a minimum cut within "
           "a band holding at most this fraction of either segment's area",
-          false, {"band"}),
+          false),
       leftOpen(0, 0.5), FIELD(boundary.band), "off"));
   t.push_back(number<double, double>(
       row("boundary_crease", "boundary.crease_weight", S::Boundary, K::Real, "W",
           "boundary refinement: a kNN edge's cut cost is its length times exp(-W c), c its "
           "concave bend (0: the shortest boundary)",
-          false, {"bandcrease"}),
+          false),
       atLeast(0), FIELD(boundary.crease_weight)));
   t.push_back(number<double, std::optional<double>>(
       row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "DEG",

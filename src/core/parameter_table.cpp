@@ -40,13 +40,9 @@ const std::vector<ParameterInfo>& parameterTable() {
 }
 
 const ParameterInfo* findParameter(const std::string& name) {
-  for (const ParameterInfo& r : parameterTable()) {
+  for (const ParameterInfo& r : parameterTable())
     if (r.name == name)
       return &r;
-    for (const std::string& a : r.aliases)
-      if (a == name)
-        return &r;
-  }
   return nullptr;
 }
 

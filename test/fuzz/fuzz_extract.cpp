@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -164,7 +165,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (indices)
       seg.setIndices(indices);
     seg.setNumberOfNeighbours(k);
-    seg.setNumberOfSamples(samples);
+    seg.setNumberOfSamples(samples ? std::optional<int>(samples) : std::nullopt); // 0: auto
     seg.setCrossingFraction(crossing);
     seg.setAreaFraction(area);
     seg.setHeightFraction(height);
@@ -172,15 +173,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     seg.setAlpha1(alpha1);
     seg.setAlpha2(alpha2);
     seg.setThreshold(threshold);
-    seg.setNumberOfSegments(segments_wanted);
+    if (segments_wanted > 0)
+      seg.setNumberOfSegments(segments_wanted);
     seg.setNumberOfSplitValues(splits);
     seg.setNormalizeWidth(flags & 2);
-    seg.setConnectAdjacentTrees(flags & 4);
+    if (!(flags & 4)) // else the default, every touching pair
+      seg.setAdjacency(pcl_ncut_seg::Adjacency::Saddles);
     seg.setNumberOfThreads(num_threads);
-    // Options beyond the paper: 2 bits or 1 bit each, 0 keeps the default.
-    static const double kRadii[] = {0, 0, 0.5, 1e3}, kWeight[] = {0, 0, 0.01, 1e3},
-                        kElongation[] = {0, 0, 1e-3, 10}, kFloor[] = {0, 1e-300, 0.5, 1e300},
-                        kShare[] = {0, 0, 1, 0};
+    // Options beyond the paper: 2 bits or 1 bit each, 0 keeps the default (nullopt: off).
+    using Off = std::optional<double>;
+    static const Off kRadii[] = {0, Off(), 0.5, 1e3}, kWeight[] = {0, Off(), 0.01, 1e3},
+                     kElongation[] = {0, Off(), 1e-3, 10};
+    static const double kFloor[] = {0, 1e-300, 0.5, 1e300}, kShare[] = {0, 0, 1, 0};
     static const int kMaxSegments[] = {0, 1, 2, INT_MAX};
     if (options1 & 3)
       seg.setBridgeGap(kRadii[options1 & 3]);
@@ -188,33 +192,38 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setConcavityWeight(kWeight[(options1 >> 2) & 3]);
     if ((options1 >> 4) & 3)
       seg.setFlatElongation(kElongation[(options1 >> 4) & 3]);
-    if (options1 & 0x40)
-      seg.setLargestGapStopping(false);
+    if ((options1 & 0x40) && segments_wanted == 0) // the threshold rule, unless a count
+      seg.setStoppingRule(pcl_ncut_seg::StoppingRule::Threshold);
     if (options1 & 0x80)
       seg.setCadMode(true);
     if (options2 & 3)
       seg.setMaxSegments(kMaxSegments[options2 & 3]);
     if ((options2 >> 2) & 3)
       seg.setGapFloor(kFloor[(options2 >> 2) & 3]);
-    if (((options2 >> 4) & 3) == 3)
-      seg.setConnectAllAdjacent(false);
-    else if ((options2 >> 4) & 3)
+    if (((options2 >> 4) & 3) == 3) {
+      if (seg.getAdjacency() == pcl_ncut_seg::Adjacency::All)
+        seg.setAdjacency(pcl_ncut_seg::Adjacency::Trees);
+    } else if ((options2 >> 4) & 3)
       seg.setAdjacentShare(kShare[(options2 >> 4) & 3]);
     if (options2 & 0x40)
       seg.setMinSegmentFraction(0.25);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
-    static const double kBand[] = {0, 0, 0.5, 1e-3}, kCreaseSplit[] = {0, 0, 1e-6, 1e3};
+    static const Off kBand[] = {0, Off(), 0.5, 1e-3}, kCreaseSplit[] = {0, Off(), 1e-6, 1e3};
     if (later_options & 3)
       seg.setBoundaryBand(kBand[later_options & 3]);
     if (later_options & 4)
       seg.setBoundaryCreaseWeight(1e3);
     if ((later_options >> 3) & 3)
       seg.setCreaseSplit(kCreaseSplit[(later_options >> 3) & 3]);
-    // The short-cut stopping rule: flag 0x08 turns it off, 0x80 sets extremes.
-    if (flags & 0x08)
-      seg.setNeckExponent(0);
+    // The short-cut stopping rule: flag 0x08 takes the largest-gap rule instead, 0x80 the
+    // short-cut rule at its extremes.
+    using pcl_ncut_seg::StoppingRule;
+    if ((flags & 0x08) && seg.getStoppingRule() == StoppingRule::ShortCut)
+      seg.setStoppingRule(StoppingRule::LargestGap);
     if (flags & 0x80) {
+      if (seg.getStoppingRule() == StoppingRule::LargestGap)
+        seg.setStoppingRule(StoppingRule::ShortCut);
       seg.setNeckExponent(1e3);
       seg.setNeckBound(1e300);
     }
@@ -250,10 +259,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // The cheap path: change only cut parameters and extract again.
-  seg.setNumberOfSegments(segments_wanted > 0 ? 0 : 3);
+  if (segments_wanted > 0) // from the count to the default rule, or the other way
+    seg.setStoppingRule(pcl_ncut_seg::Parameters().stopping.rule);
+  else
+    seg.setNumberOfSegments(3);
   seg.setThreshold(kThreshold[(flags >> 5) % 8]);
   seg.setAlpha2(kPositive[flags % 9]);
-  seg.setFlatElongation(options1 & 0x20 ? 0.0 : 0.2);
+  seg.setFlatElongation(options1 & 0x20 ? std::optional<double>() : 0.2);
   seg.setNeckBound(flags & 0x08 ? 1e-3 : 0.5);
   seg.setBoundaryCreaseWeight(later_options & 4 ? 0.0 : 3.0);
   seg.extract(segments);

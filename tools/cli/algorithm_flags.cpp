@@ -43,8 +43,6 @@ Flag parameterFlag(const ParameterInfo& row, const Parameters& base, const Param
     def = "off: the -stopping rule"; // the count is read only by the count rule
   Flag f = is_switch ? switchFlag("-" + row.name, help, def)
                      : textFlag("-" + row.name, row.value_name, help, def);
-  for (const std::string& alias : row.aliases)
-    f.aliases.push_back("-" + alias);
   f.group = std::string("algorithm, ") + stageName(row.stage);
   f.check = [&row](const std::string& text, std::string* why) {
     Parameters scratch;

@@ -1,8 +1,8 @@
 /*
  * pcl_ncut_seg tools: the algorithm's parameters as flags, the same in every tool. Each row of
- * pcl_ncut_seg::parameterTable() is a flag, "-" + its name (its old spellings as aliases), with
- * its help, range and default; -paper starts from Parameters::paper() instead of the defaults,
- * and the flags given apply on top of it.
+ * pcl_ncut_seg::parameterTable() is a flag, "-" + its name, with its help, range and default;
+ * -paper starts from Parameters::paper() instead of the defaults, and the flags given apply on
+ * top of it.
  */
 #pragma once
 

@@ -129,10 +129,11 @@ double Flags::real(const std::string& name) const {
 
 namespace {
 
-/** The row for arg, by name or alias; nullptr for none. */
+/** The row for arg ("--help" is "-h"); nullptr for none. */
 const Flag* lookUp(const std::vector<Flag>& table, const std::string& arg) {
+  const std::string name = arg == "--help" ? "-h" : arg;
   for (const Flag& f : table)
-    if (f.name == arg || std::find(f.aliases.begin(), f.aliases.end(), arg) != f.aliases.end())
+    if (f.name == name)
       return &f;
   return nullptr;
 }
@@ -210,16 +211,13 @@ void printFlags(const std::vector<Flag>& table) {
     std::string line = head + " = " + f.help;
     if (!f.def.empty())
       line += " (default: " + f.def + ")";
-    for (std::size_t a = 0; a < f.aliases.size(); ++a)
-      line += (a == 0 ? " [also " : ", ") + f.aliases[a] + (a + 1 == f.aliases.size() ? "]" : "");
     pcl::console::print_info("%s\n", line.c_str());
   }
 }
 
 std::vector<Flag> commonFlags() {
   std::vector<Flag> table = {switchFlag("-quiet", "print errors and warnings only"),
-                             switchFlag("-h", "this help", "")};
-  table[1].aliases = {"--help"};
+                             switchFlag("-h", "this help (also --help)", "")};
   for (Flag& f : table)
     f.group = "general";
   return table;

@@ -1,6 +1,6 @@
 /*
  * pcl_ncut_seg tools: the command-line layer every tool shares. A tool describes its flags in a
- * table, one row per flag (name, value, help, default, range, old spellings); parseFlags reads
+ * table, one row per flag (name, value, help, default, range); parseFlags reads
  * argv against it and printFlags prints its help, so that a flag is spelt, checked and
  * documented the same way in every tool.
  */
@@ -24,9 +24,8 @@ struct Flag {
   std::string help;                 ///< what it does, with its range
   std::string def;                  ///< its default, for the help ("" for none)
   double lo = 0, hi = 0;
-  bool open_lo = false;             ///< lo itself is out of range
-  std::string range;                ///< the range in words, for the error ("an integer >= 2")
-  std::vector<std::string> aliases; ///< other accepted spellings ("-creasecut"), read as name
+  bool open_lo = false; ///< lo itself is out of range
+  std::string range;    ///< the range in words, for the error ("an integer >= 2")
   /// A check of the value's text beyond the kind and range: false with the reason (appended
   /// to "bad value 'x' for -name: "). Empty: none.
   std::function<bool(const std::string& text, std::string* why)> check;
@@ -45,8 +44,8 @@ Flag textFlag(const std::string& name, const std::string& value, const std::stri
 /** \brief The row of the table called name, or nullptr. */
 Flag* findFlag(std::vector<Flag>& table, const std::string& name);
 
-/** \brief The parsed command line: flags given (each at most once, under its name, not its
- * alias), in the order given, and the file arguments. */
+/** \brief The parsed command line: flags given (each at most once), in the order given, and
+ * the file arguments. */
 struct Flags {
   std::map<std::string, std::string> given; ///< flag -> its text ("" for a switch)
   std::vector<std::string> order;           ///< the flags given, in command-line order
@@ -62,7 +61,7 @@ struct Flags {
  * range value, flag given twice) print one error line and return false. */
 bool parseFlags(int argc, char** argv, const std::vector<Flag>& table, Flags& flags);
 
-/** \brief The help lines of the flags in the table, with their defaults and old spellings. */
+/** \brief The help lines of the flags in the table, with their defaults. */
 void printFlags(const std::vector<Flag>& table);
 
 /** \brief -quiet and -h (also --help). */

@@ -12,15 +12,6 @@
 
 #include <optional>
 
-namespace pcl {
-namespace ncut_detail {
-/// Older releases took 0 for "off": the optional field is then empty.
-inline std::optional<double> offIfZero(double value) {
-  return value == 0.0 ? std::nullopt : std::optional<double>(value);
-}
-} // namespace ncut_detail
-} // namespace pcl
-
 template <typename PointT>
 bool pcl::SupernodeNCutSegmentation<PointT>::update(const pcl_ncut_seg::Parameters& params,
                                                     const char* method) {
@@ -50,23 +41,19 @@ bool pcl::SupernodeNCutSegmentation<PointT>::setParameters(const pcl_ncut_seg::P
   }
 
 PCL_NCUT_SEG_SETTER(setNumberOfNeighbours, int, p.graph.k = value)
-PCL_NCUT_SEG_SETTER(setNumberOfSamples, int,
-                    p.centrality.samples = value == 0 ? std::nullopt : std::optional<int>(value))
+PCL_NCUT_SEG_SETTER(setNumberOfSamples, std::optional<int>, p.centrality.samples = value)
 PCL_NCUT_SEG_SETTER(setCentralityMode, pcl_ncut_seg::CentralityMode, p.centrality.mode = value)
 PCL_NCUT_SEG_SETTER(setNumberOfRepresentatives, int, p.centrality.representatives = value)
 PCL_NCUT_SEG_SETTER(setStarts, int, p.centrality.starts = value)
 PCL_NCUT_SEG_SETTER(setCrossingFraction, float, p.supernodes.crossing_fraction = value)
 PCL_NCUT_SEG_SETTER(setAreaFraction, float, p.refinement.area_fraction = value)
 PCL_NCUT_SEG_SETTER(setHeightFraction, float, p.refinement.height_fraction = value)
-PCL_NCUT_SEG_SETTER(setCreaseSplit, double,
-                    p.refinement.crease_split = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setCreaseCut, double, p.refinement.crease_cut = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setBridgeGap, double, p.graph.bridge_gap = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setDenoise, double, p.graph.denoise = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setIrregularSampling, double,
-                    p.graph.irregular_sampling = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setMaxPoints, int,
-                    p.graph.max_points = value == 0 ? std::nullopt : std::optional<int>(value))
+PCL_NCUT_SEG_SETTER(setCreaseSplit, std::optional<double>, p.refinement.crease_split = value)
+PCL_NCUT_SEG_SETTER(setCreaseCut, std::optional<double>, p.refinement.crease_cut = value)
+PCL_NCUT_SEG_SETTER(setBridgeGap, std::optional<double>, p.graph.bridge_gap = value)
+PCL_NCUT_SEG_SETTER(setDenoise, std::optional<double>, p.graph.denoise = value)
+PCL_NCUT_SEG_SETTER(setIrregularSampling, std::optional<double>, p.graph.irregular_sampling = value)
+PCL_NCUT_SEG_SETTER(setMaxPoints, std::optional<int>, p.graph.max_points = value)
 PCL_NCUT_SEG_SETTER(setCadMode, bool, p.cad.enabled = value)
 PCL_NCUT_SEG_SETTER(setBeta, double, p.similarity.beta = value)
 PCL_NCUT_SEG_SETTER(setAlpha1, double, p.similarity.alpha1 = value)
@@ -74,103 +61,32 @@ PCL_NCUT_SEG_SETTER(setAlpha2, double, p.similarity.alpha2 = value)
 PCL_NCUT_SEG_SETTER(setNormalizeWidth, bool, p.similarity.normalize_width = value)
 PCL_NCUT_SEG_SETTER(setAdjacency, pcl_ncut_seg::Adjacency, p.similarity.adjacency = value)
 PCL_NCUT_SEG_SETTER(setAdjacentShare, double, p.similarity.adjacent_share = value)
-PCL_NCUT_SEG_SETTER(setConcavityWeight, double,
-                    p.similarity.concavity = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setFlatElongation, double,
-                    p.similarity.flat_elongation = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setConcavityWeight, std::optional<double>, p.similarity.concavity = value)
+PCL_NCUT_SEG_SETTER(setFlatElongation, std::optional<double>, p.similarity.flat_elongation = value)
 PCL_NCUT_SEG_SETTER(setFaceAngle, float, p.similarity.face_angle = value)
 PCL_NCUT_SEG_SETTER(setStoppingRule, pcl_ncut_seg::StoppingRule, p.stopping.rule = value)
 PCL_NCUT_SEG_SETTER(setThreshold, double, p.stopping.threshold = value)
 PCL_NCUT_SEG_SETTER(setNumberOfSplitValues, int, p.stopping.num_splits = value)
-PCL_NCUT_SEG_SETTER(setMinSegmentFraction, double,
-                    p.stopping.min_segment_fraction = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setMinSegmentFraction, std::optional<double>,
+                    p.stopping.min_segment_fraction = value)
 PCL_NCUT_SEG_SETTER(setMaxSegments, int, p.stopping.max_segments = value)
 PCL_NCUT_SEG_SETTER(setGapFloor, double, p.stopping.gap_floor = value)
+PCL_NCUT_SEG_SETTER(setNeckExponent, double, p.stopping.neck_exponent = value)
 PCL_NCUT_SEG_SETTER(setNeckBound, double, p.stopping.neck_bound = value)
-PCL_NCUT_SEG_SETTER(setBoundaryBand, double, p.boundary.band = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setBoundaryBand, std::optional<double>, p.boundary.band = value)
 PCL_NCUT_SEG_SETTER(setBoundaryCreaseWeight, double, p.boundary.crease_weight = value)
-PCL_NCUT_SEG_SETTER(setRimMerge, double, p.boundary.rim_merge = ncut_detail::offIfZero(value))
-PCL_NCUT_SEG_SETTER(setViewSmallSegment, double,
-                    p.boundary.view_small_segment = ncut_detail::offIfZero(value))
+PCL_NCUT_SEG_SETTER(setRimMerge, std::optional<double>, p.boundary.rim_merge = value)
+PCL_NCUT_SEG_SETTER(setViewSmallSegment, std::optional<double>,
+                    p.boundary.view_small_segment = value)
 PCL_NCUT_SEG_SETTER(setNumberOfThreads, unsigned, p.execution.num_threads = value)
 
 #undef PCL_NCUT_SEG_SETTER
 
-// The setters of an older release whose values became modes.
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setLargestGapStopping(bool enable) {
-  using pcl_ncut_seg::StoppingRule;
-  pcl_ncut_seg::Parameters p = params_;
-  if (!enable && p.stopping.rule != StoppingRule::Count)
-    p.stopping.rule = StoppingRule::Threshold;
-  else if (enable && p.stopping.rule == StoppingRule::Threshold)
-    p.stopping.rule = StoppingRule::ShortCut;
-  update(p, "setLargestGapStopping");
-}
-
-template <typename PointT>
-bool pcl::SupernodeNCutSegmentation<PointT>::getLargestGapStopping() const {
-  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::LargestGap ||
-         params_.stopping.rule == pcl_ncut_seg::StoppingRule::ShortCut;
-}
-
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setNeckExponent(double exponent) {
-  using pcl_ncut_seg::StoppingRule;
-  pcl_ncut_seg::Parameters p = params_;
-  if (exponent == 0.0) { // the largest jump instead of the short-cut rule
-    if (p.stopping.rule == StoppingRule::ShortCut)
-      p.stopping.rule = StoppingRule::LargestGap;
-  } else {
-    p.stopping.neck_exponent = exponent;
-    if (p.stopping.rule == StoppingRule::LargestGap)
-      p.stopping.rule = StoppingRule::ShortCut;
-  }
-  update(p, "setNeckExponent");
-}
-
-template <typename PointT> double pcl::SupernodeNCutSegmentation<PointT>::getNeckExponent() const {
-  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::LargestGap
-             ? 0.0
-             : params_.stopping.neck_exponent;
-}
-
+// Asking for a number of segments is choosing the count rule (as the table's "segments").
 template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::setNumberOfSegments(int segments) {
-  using pcl_ncut_seg::StoppingRule;
   pcl_ncut_seg::Parameters p = params_;
-  if (segments == 0) {
-    if (p.stopping.rule == StoppingRule::Count)
-      p.stopping.rule = pcl_ncut_seg::Parameters().stopping.rule;
-  } else {
-    p.stopping.segments = segments;
-    p.stopping.rule = StoppingRule::Count;
-  }
+  p.stopping.segments = segments;
+  p.stopping.rule = pcl_ncut_seg::StoppingRule::Count;
   update(p, "setNumberOfSegments");
-}
-
-template <typename PointT> int pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSegments() const {
-  return params_.stopping.rule == pcl_ncut_seg::StoppingRule::Count ? params_.stopping.segments : 0;
-}
-
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setConnectAdjacentTrees(bool connect) {
-  using pcl_ncut_seg::Adjacency;
-  pcl_ncut_seg::Parameters p = params_;
-  if (connect && p.similarity.adjacency == Adjacency::Saddles)
-    p.similarity.adjacency = Adjacency::Trees;
-  else if (!connect) // All implies the trees' joining: without it, saddles only
-    p.similarity.adjacency = Adjacency::Saddles;
-  update(p, "setConnectAdjacentTrees");
-}
-
-template <typename PointT>
-void pcl::SupernodeNCutSegmentation<PointT>::setConnectAllAdjacent(bool connect) {
-  using pcl_ncut_seg::Adjacency;
-  pcl_ncut_seg::Parameters p = params_;
-  if (connect)
-    p.similarity.adjacency = Adjacency::All;
-  else if (p.similarity.adjacency == Adjacency::All)
-    p.similarity.adjacency = Adjacency::Trees;
-  update(p, "setConnectAllAdjacent");
 }

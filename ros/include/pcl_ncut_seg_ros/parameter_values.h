@@ -35,9 +35,10 @@ struct Value {
 bool isReconfigurable(const pcl_ncut_seg::ParameterInfo& row);
 
 /** \brief The table's text for a value of this row: a number in its shortest decimal, a bool
- * as on or off. For an optional extension (a row with an off word) whose range leaves out 0,
- * 0 and false mean off too ("~boundary_band: off" reads as false in YAML; dynamic_reconfigure
- * has no words for numbers). False with why when the value is of no kind the row takes. */
+ * as on or off. For an optional extension (a row with an off word), false means off too
+ * ("~boundary_band: off" reads as false in YAML); for a reconfigurable one whose range leaves
+ * out 0, so does 0, as dynamic_reconfigure has no words for numbers (the only place 0 means
+ * off). False with why when the value is of no kind the row takes. */
 bool valueText(const pcl_ncut_seg::ParameterInfo& row, const Value& value, std::string& text,
                std::string* why);
 
