@@ -6,7 +6,8 @@
 #
 #   bash scripts/ablation.sh OUT [stage ...]
 #
-# Environment: as scripts/report.sh, and SKIP_BASE=1 to keep an earlier OUT/base; its defaults here are DRAWS=1 and VIEWS=2, and the inputs
+# Environment: as scripts/report.sh, SKIP_BASE=1 to keep an earlier OUT/base, WHOLE_INPUTS and
+# VIEW_INPUTS (the inputs of the stages that act on any input, and on views only); its defaults here are DRAWS=1 and VIEWS=2, and the inputs
 # leave out the samples with noise of 0.5 spacings (the same kind of input as 1.0). The
 # stages run by default are those that change labels; fast_centrality (a speed stage, within
 # 1-2% of the exact f) is measured only when named.
@@ -16,8 +17,8 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 OUT="${1:?usage: bash scripts/ablation.sh OUT [stage ...]}"
 shift
 export DRAWS="${DRAWS:-1}" VIEWS="${VIEWS:-2}"
-WHOLE="centroids samples noise_1.0 density views views_unknown_origin"
-VIEWS_ONLY="views views_unknown_origin"
+WHOLE="${WHOLE_INPUTS:-centroids samples noise_1.0 density views views_unknown_origin}"
+VIEWS_ONLY="${VIEW_INPUTS:-views views_unknown_origin}"
 
 # stage: its flags when off, and which inputs it can act on.
 declare -A OFF=(
