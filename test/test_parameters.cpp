@@ -247,13 +247,12 @@ TEST(CorePipeline, AnalysisServesACutOnlyWithWhatItMeasured) {
   p.similarity.concavity.reset();
   p.boundary.band.reset();
   p.boundary.rim_merge.reset();
-  p.boundary.view_small_segment.reset();
   EXPECT_FALSE(cutNeeds(p).concavity);
   EXPECT_FALSE(cutNeeds(p).crease);
   EXPECT_FALSE(cutNeeds(p).rim);
-  Parameters small_only = p;
-  small_only.boundary.view_small_segment = 0.01;
-  EXPECT_TRUE(cutNeeds(small_only).rim) << "a view's small segments need to know its rim";
+  Parameters merge_only = p;
+  merge_only.boundary.rim_merge = 10.0;
+  EXPECT_TRUE(cutNeeds(merge_only).rim) << "the rim merge fits planes to the rim's sides";
   Analysis a;
   EXPECT_TRUE(serves(a, p));
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the contact concavity";

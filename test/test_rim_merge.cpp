@@ -1,5 +1,5 @@
 /*
- * Open views: the rim of an organized cloud and the segments only the rim cut apart
+ * Open views: the segments only the rim cut apart
  * (core/rim_merge.h, SupernodeNCutSegmentation::setRimMerge).
  */
 #include <pcl_ncut_seg/core/centrality.h>
@@ -63,71 +63,6 @@ std::size_t countLabels(const std::vector<std::uint32_t>& segment) {
 }
 
 } // namespace
-
-TEST(OrganizedRim, MarksTheImageBorderHolesAndDepthJumps) {
-  // 6 x 5 pixels; pixel 14 (row 2, column 2) has no point; pixel 10 (row 1, column 4) lies 50%
-  // farther than its neighbours (a surface behind an occluding edge).
-  const std::size_t w = 6, h = 5;
-  std::vector<float> range(w * h, 1.0f);
-  std::vector<std::uint32_t> vertex_pixel;
-  for (std::uint32_t px = 0; px < w * h; ++px)
-    if (px != 14)
-      vertex_pixel.push_back(px);
-  range[14] = std::numeric_limits<float>::quiet_NaN();
-  range[10] = 1.5f;
-  const std::vector<std::uint8_t> rim = organizedRim(
-      vertex_pixel, [&](std::size_t px) { return range[px]; }, w, h);
-  ASSERT_EQ(rim.size(), vertex_pixel.size());
-  const std::set<std::uint32_t> inside_rim = {8, 13, 15, 20, 9, 10, 16};
-  for (std::size_t v = 0; v < rim.size(); ++v) {
-    const std::uint32_t px = vertex_pixel[v], row = px / w, col = px % w;
-    const bool border = row == 0 || col == 0 || row + 1 == h || col + 1 == w;
-    EXPECT_EQ(rim[v] != 0, border || inside_rim.count(px) > 0) << "pixel " << px;
-  }
-}
-
-namespace {
-/// The segmenter's own steps that find an organized cloud's rim, exposed.
-class RimProbe : public pcl::SupernodeNCutSegmentation<pcl::PointXYZ> {
-public:
-  std::vector<std::uint8_t> rim() {
-    return analyze() ? organizedRim() : std::vector<std::uint8_t>{};
-  }
-};
-} // namespace
-
-TEST(OrganizedRim, TheSegmenterCountsCopiesAsSeenAndPixelsLeftOutAsHoles) {
-  // 10 x 8 pixels of a plane 1 m in front of the sensor; pixel (7, 5) has no point, pixel
-  // (5, 4) is left out of the indices, and pixel (2, 2) repeats pixel (3, 2)'s point (a copy,
-  // analysed once). Holes and left-out pixels open their 4-neighbours; a copy does not.
-  const int w = 10, h = 8;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>(w, h));
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u)
-      (*cloud)(u, v) = pcl::PointXYZ(0.01f * (u - 4.5f), 0.01f * (v - 3.5f), 1.0f);
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  (*cloud)(7, 5) = pcl::PointXYZ(nan, nan, nan);
-  (*cloud)(2, 2) = (*cloud)(3, 2);
-  cloud->is_dense = false;
-  pcl::IndicesPtr indices(new pcl::Indices);
-  for (int px = 0; px < w * h; ++px)
-    if (px != 4 * w + 5)
-      indices->push_back(px);
-  RimProbe probe;
-  probe.setInputCloud(cloud);
-  probe.setIndices(indices);
-  const std::vector<std::uint8_t> rim = probe.rim();
-  const std::vector<int>& pixel = probe.getAnalysedIndices();
-  ASSERT_EQ(rim.size(), pixel.size());
-  ASSERT_EQ(pixel.size(), static_cast<std::size_t>(w * h - 3)); // a hole, a pixel left out, a copy
-  const std::set<int> opened = {4 * w + 4, 4 * w + 6, 3 * w + 5, 5 * w + 5,  // by (5, 4)
-                                5 * w + 6, 5 * w + 8, 4 * w + 7, 6 * w + 7}; // by (7, 5)
-  for (std::size_t v = 0; v < rim.size(); ++v) {
-    const int u = pixel[v] % w, row = pixel[v] / w;
-    const bool border = row == 0 || u == 0 || row + 1 == h || u + 1 == w;
-    EXPECT_EQ(rim[v] != 0, border || opened.count(pixel[v]) > 0) << "pixel " << pixel[v];
-  }
-}
 
 namespace {
 

@@ -79,11 +79,9 @@ struct GraphParams {
   /// many of its points (one per cube of a grid), and every other point takes the segment of its
   /// nearest analysed point. Off: every point.
   std::optional<int> max_points = 60000;
-  /// Extension (core/rim_merge.h): an organized cloud (a depth image) is an open view whose
-  /// rim is where the image's depth jumps or its points end. Off: a surface without a rim.
-  bool organized_rim = true;
-  /// Extension (core/single_view.h): an unorganized cloud that is one view from its sensor
-  /// origin is an open view with the rim the test finds. Off: a surface without a rim.
+  /// Extension (core/single_view.h): a cloud that is one view from its sensor origin (a depth
+  /// image, organized or not, or a scanner's) is an open view with the rim the test finds.
+  /// Off: a surface without a rim.
   bool single_view = true;
 };
 
@@ -178,12 +176,6 @@ struct BoundaryParams {
   /// the other side) meet at a concave angle below this many degrees (PCL's LCCP calls 10
   /// degrees convex) and the boundary is no limb's neck. Off: the paper.
   std::optional<double> rim_merge = 10.0;
-  /// Extension (core/small_segments.h), open views only: a segment whose area is below this
-  /// fraction of the object's area joins the touching segment it shares most kNN edges with
-  /// (the paper's "small", footnote 4, for the pieces a view leaves of a part). A view shows at
-  /// most half of a closed surface, so the object's area is taken as twice the view's. Off:
-  /// the paper.
-  std::optional<double> view_small_segment = 0.01;
 };
 
 /** \brief How the work runs; the result never depends on it. */

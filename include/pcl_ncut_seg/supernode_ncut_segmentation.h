@@ -213,19 +213,12 @@ public:
   /** \param[in] weight  boundary.crease_weight, >= 0 */
   void setBoundaryCreaseWeight(double weight);
   double getBoundaryCreaseWeight() const { return params_.boundary.crease_weight; }
-  /** \brief Open views (core/rim_merge.h): on an organized cloud, or one view from the sensor
-   * origin, two touching segments, one of which reaches the view's rim, are merged when the
-   * planes of their boundary's two sides meet at a concave angle below this and the boundary
-   * is no limb's neck.
-   * \param[in] degrees  boundary.rim_merge, in (0, 180]; std::nullopt: off */
+  /** \brief Open views (core/rim_merge.h): on one view from the sensor origin, two touching
+   * segments, one of which reaches the view's rim, are merged when the planes of their boundary's
+   * two sides meet at a concave angle below this and the boundary is no limb's neck. \param[in]
+   * degrees  boundary.rim_merge, in (0, 180]; std::nullopt: off */
   void setRimMerge(std::optional<double> degrees);
   std::optional<double> getRimMerge() const { return params_.boundary.rim_merge; }
-  /** \brief Open views (core/small_segments.h): a segment whose area is below this fraction
-   * of the object's area (taken as twice the view's) joins the touching segment it shares
-   * most kNN edges with.
-   * \param[in] fraction  boundary.view_small_segment, in (0, 0.5]; std::nullopt: off */
-  void setViewSmallSegment(std::optional<double> fraction);
-  std::optional<double> getViewSmallSegment() const { return params_.boundary.view_small_segment; }
   /** \param[in] concavity  refinement.crease_split, > 0; std::nullopt: off */
   void setCreaseSplit(std::optional<double> concavity);
   std::optional<double> getCreaseSplit() const { return params_.refinement.crease_split; }
@@ -307,8 +300,6 @@ protected:
   /** \brief Turn the cloud into arrays, find the neighbours and run the core's analysis;
    * false on bad input. */
   bool analyze();
-  /** \brief Per analysed vertex of an organized input, 1 on the view's rim. */
-  std::vector<std::uint8_t> organizedRim() const;
   /** \brief The valid points (in range, finite, each once), sorted; false on a bad index. */
   bool validIndices(std::vector<int>& valid) const;
   /** \brief The k nearest neighbours of each vertex with the search method set. */

@@ -9,7 +9,7 @@ TABLE = pcl_ncut_seg.parameter_table()
 
 # Per parameter, a valid value other than its default (every row must have one).
 OTHER = {
-    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "organized_rim": False, "single_view": False, "centrality_samples": 30, "centrality": "exact",
+    "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "single_view": False, "centrality_samples": 30, "centrality": "exact",
     "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
     "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
@@ -18,7 +18,6 @@ OTHER = {
     "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
     "splits": 50, "min_segment_fraction": 0.1, "max_segments": 4, "gap_floor": 0.01,
     "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
-    "view_small_segment": 0.02,
     "threads": 1,
 }
 

@@ -5,7 +5,6 @@
 #include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/short_cut.h>
-#include <pcl_ncut_seg/core/small_segments.h>
 
 #include <algorithm>
 #include <cmath>
@@ -86,7 +85,7 @@ constexpr double kSmallPart = 0.01;
 double rimBandWidth(const std::vector<float>& radii) {
   // Half the width of the smallest part the paper keeps, in feature area (the discs overlap:
   // wider than the part's true half-width); the object's area is at least twice the view's
-  // (as in viewSmallSegmentStage()).
+  // (a view shows at most half of a closed surface).
   return 0.5 * std::sqrt(kSmallPart * 2.0 * viewArea(radii));
 }
 
@@ -96,22 +95,6 @@ void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   const std::vector<std::uint32_t> map =
       mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge,
                      rimBandWidth(a.radii), r.point_segment, r.num_segments);
-  for (auto& s : r.supernode_segment)
-    if (s < map.size())
-      s = map[s];
-}
-
-void viewSmallSegmentStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
-  if (a.cad || !params.view_small_segment || a.rim.empty())
-    return;
-  std::vector<double> area(a.radii.size());
-  for (std::size_t p = 0; p < area.size(); ++p)
-    area[p] = pointArea(a.radii[p]);
-  // A view shows at most half of a closed surface: the object's area is at least twice the
-  // view's, and the paper's small is a fraction of the object's.
-  const double min_area = *params.view_small_segment * 2.0 * viewArea(a.radii);
-  const std::vector<std::uint32_t> map =
-      joinSmallSegments(*a.graph, area, min_area, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];

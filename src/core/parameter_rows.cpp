@@ -50,15 +50,10 @@ void graphRows(Rows& t) {
           "every other point takes the segment of its nearest analysed point",
           false),
       atLeast(100), FIELD(graph.max_points), "off"));
-  t.push_back(boolean(row("organized_rim", "graph.organized_rim", S::Graph, K::Boolean, "on|off",
-                          "open views: an organized cloud (a depth image) is a view whose rim is "
-                          "where its depth jumps or its points end; not in CAD mode",
-                          false),
-                      FIELD(graph.organized_rim)));
   t.push_back(boolean(row("single_view", "graph.single_view", S::Graph, K::Boolean, "on|off",
-                          "open views: an unorganized cloud that is one view from its sensor "
-                          "origin is a view, its rim where the surface leaves the sensor's sight; "
-                          "not in CAD mode",
+                          "open views: a cloud that is one view from its sensor origin (a depth "
+                          "image, organized or not, or a scanner's) is a view, its rim where the "
+                          "surface leaves the sensor's sight; not in CAD mode",
                           false),
                       FIELD(graph.single_view)));
 }
@@ -283,20 +278,13 @@ void boundaryRows(Rows& t) {
       atLeast(0), FIELD(boundary.crease_weight)));
   t.push_back(number<double, std::optional<double>>(
       row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "DEG",
-          "open views (an organized cloud, or one view from the sensor origin): merge two "
+          "open views (one view from the sensor origin, -single_view): merge two "
           "touching segments, one reaching the view's rim, when the planes of the boundary's "
           "two sides (each its points within half the width of a part of 1% of the object's "
           "feature area) meet at a concave angle below DEG degrees and its neck is "
           "at least sqrt(pi) (no limb's); not in CAD mode",
           false),
       leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));
-  t.push_back(number<double, std::optional<double>>(
-      row("view_small_segment", "boundary.view_small_segment", S::Boundary, K::Real, "F",
-          "open views (as rim_merge): a segment whose area is below F of the object's (taken "
-          "as twice the view's: a view shows at most half of a closed surface) joins the "
-          "touching segment it shares most kNN edges with; not in CAD mode",
-          false),
-      leftOpen(0, 0.5), FIELD(boundary.view_small_segment), "off"));
 }
 
 /// Execution

@@ -33,7 +33,6 @@ Parameters Parameters::paper() {
   p.graph.denoise.reset();
   p.graph.irregular_sampling.reset();
   p.graph.max_points.reset();
-  p.graph.organized_rim = false;
   p.graph.single_view = false;
   p.centrality.mode = CentralityMode::Exact;
   p.centrality.starts = 1;
@@ -47,7 +46,6 @@ Parameters Parameters::paper() {
   p.stopping.min_segment_fraction.reset();
   p.boundary.band.reset();
   p.boundary.rim_merge.reset();
-  p.boundary.view_small_segment.reset();
   return p;
 }
 

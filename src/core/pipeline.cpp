@@ -20,8 +20,7 @@ CutNeeds cutNeeds(const Parameters& params) {
   CutNeeds needs;
   needs.concavity = !params.cad.enabled && params.similarity.concavity.has_value();
   needs.crease = !params.cad.enabled && params.boundary.band.has_value();
-  needs.rim = !params.cad.enabled && (params.boundary.rim_merge.has_value() ||
-                                      params.boundary.view_small_segment.has_value());
+  needs.rim = !params.cad.enabled && params.boundary.rim_merge.has_value();
   return needs;
 }
 
@@ -136,7 +135,6 @@ CutResult cutStart(const Analysis& analysis, const Parameters& params, PhaseTime
   labelPoints(analysis, r);
   boundaryStage(analysis, params.boundary, r);
   rimStage(analysis, params.boundary, r);
-  viewSmallSegmentStage(analysis, params.boundary, r);
   numberSegments(analysis.order, r);
   times.points += clock.lap();
   return r;

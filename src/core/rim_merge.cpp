@@ -15,24 +15,6 @@
 
 namespace pcl_ncut_seg {
 
-std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_pixel,
-                                       const std::function<float(std::size_t)>& range,
-                                       std::size_t width, std::size_t height) {
-  std::vector<std::uint8_t> rim(vertex_pixel.size(), 0);
-  for (std::size_t v = 0; v < vertex_pixel.size(); ++v) {
-    const std::size_t px = vertex_pixel[v], row = px / width, col = px % width;
-    if (row == 0 || col == 0 || row + 1 == height || col + 1 == width) {
-      rim[v] = 1;
-      continue;
-    }
-    const float r = range(px);
-    // NaN (no point) fails the comparison: open.
-    const auto open = [&](std::size_t q) { return !(std::abs(range(q) - r) <= 0.02f * r); };
-    rim[v] = open(px - 1) || open(px + 1) || open(px - width) || open(px + width);
-  }
-  return rim;
-}
-
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 // The neck (core/short_cut.h) of a limb as long as it is wide, cut at its base: a tube of

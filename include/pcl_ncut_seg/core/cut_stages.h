@@ -38,13 +38,6 @@ double rimBandWidth(const std::vector<float>& radii);
  * apart (core/rim_merge.h). No effect in CAD mode, with rim_merge off or without a rim. */
 void rimStage(const Analysis& analysis, const BoundaryParams& params, CutResult& result);
 
-/** \brief Small-segment stage (extension, open views): a segment smaller than
- * view_small_segment of the object's area (twice the view's) joins the touching segment it
- * shares most kNN edges with (core/small_segments.h). No effect in CAD mode, with
- * view_small_segment off or without a rim. */
-void viewSmallSegmentStage(const Analysis& analysis, const BoundaryParams& params,
-                           CutResult& result);
-
 /** \brief Renumber the segments in order of their first vertex in order (empty: by vertex). */
 void numberSegments(const std::vector<std::uint32_t>& order, CutResult& result);
 

@@ -5,7 +5,6 @@
  *
  * Before the analysis (the PCL front end, or segmentPoints()):
  *   [ext]   max_points          an even subset of a dense cloud is analysed (core/subsample.h)
- *   [ext]   organized_rim       an organized cloud's rim from its pixel grid (core/rim_merge.h)
  * analyze(), the expensive stage, once per input (analysis_stages.h):
  *   [paper] kNN graph           Sec. 4.1
  *   [ext]   denoise             noise detected and projected out (core/denoise.h)
@@ -27,7 +26,6 @@
  *   [paper] point segments      footnote 6
  *   [ext]   boundary_band       point-level boundaries by minimum cuts (core/boundary_refinement.h)
  *   [ext]   rim_merge           open views: pieces the rim cut off merged (core/rim_merge.h)
- *   [ext]   view_small_segment  open views: small pieces merged (core/small_segments.h)
  *   [ext]   starts              the medoid of the starts' segmentations (core/starts.h)
  * segmentPoints() does everything from a point array, as the PCL front end does from a cloud.
  */

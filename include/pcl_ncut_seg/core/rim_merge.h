@@ -10,24 +10,9 @@
 #include <pcl_ncut_seg/core/csr_graph.h>
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 namespace pcl_ncut_seg {
-
-/** \brief Per vertex of an organized cloud (a width x height grid of pixels), whether it lies
- * on the view's rim: a 4-neighbour pixel is off the grid, has no vertex, or lies farther along
- * its ray than 2% of the depth from it (a depth discontinuity, as PCL's organized edge
- * detection measures it).
- * \param[in] vertex_pixel  per vertex, its pixel (row * width + column)
- * \param[in] range         per pixel, the distance of its point from the sensor; NaN: no point
- *                          (no finite point, or not analysed). Asked only for the vertices'
- *                          pixels and their 4-neighbours, so that a caller need not fill an
- *                          array over the whole image.
- * \return per vertex, 1 on the rim, 0 inside */
-std::vector<std::uint8_t> organizedRim(const std::vector<std::uint32_t>& vertex_pixel,
-                                       const std::function<float(std::size_t)>& range,
-                                       std::size_t width, std::size_t height);
 
 /** \brief Merge touching segments of an open surface whose common boundary is neither a
  * concave crease nor a limb's neck, when one of the two reaches the rim. Each side of a

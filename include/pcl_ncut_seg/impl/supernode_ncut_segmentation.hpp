@@ -176,25 +176,6 @@ pcl::SupernodeNCutSegmentation<PointT>::cadNormals(const pcl_ncut_seg::CsrGraph&
   return normals;
 }
 
-template <typename PointT>
-std::vector<std::uint8_t> pcl::SupernodeNCutSegmentation<PointT>::organizedRim() const {
-  // One bit per pixel for "analysed, or a copy of an analysed point": an array of ranges over
-  // the whole image would cost more to allocate than the rim does to find.
-  std::vector<std::uint64_t> seen((input_->size() + 63) / 64, 0);
-  const auto mark = [&seen](std::size_t px) { seen[px >> 6] |= std::uint64_t(1) << (px & 63); };
-  for (const int px : point_index_)
-    mark(static_cast<std::size_t>(px));
-  for (const auto& d : duplicates_)
-    mark(static_cast<std::size_t>(d.first));
-  const Eigen::Vector3f origin = input_->sensor_origin_.template head<3>();
-  const auto range = [&](std::size_t px) {
-    return (seen[px >> 6] >> (px & 63)) & 1u ? ((*input_)[px].getVector3fMap() - origin).norm()
-                                             : std::numeric_limits<float>::quiet_NaN();
-  };
-  const std::vector<std::uint32_t> vertex_pixel(point_index_.begin(), point_index_.end());
-  return pcl_ncut_seg::organizedRim(vertex_pixel, range, input_->width, input_->height);
-}
-
 template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze() {
   const auto start = std::chrono::steady_clock::now();
   std::vector<int> valid; // in range, finite, each once, sorted: graph order is cloud order
@@ -225,9 +206,6 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   // The rim of an open view (not in CAD mode), whether or not the open-view stages run: it
   // decides how the view is analysed (one start, f without the noise's mean), which the cut
   // parameters must not change.
-  const bool organized = input_->isOrganized() && input_->width > 2 && input_->height > 2;
-  if (!params_.cad.enabled && organized && params_.graph.organized_rim)
-    prepared.set.rim = organizedRim();
   if (!params_.cad.enabled) { // a view's normals face it; is a list one view from it?
     std::array<float, 3> origin;
     for (int d = 0; d < 3; ++d)

@@ -76,8 +76,6 @@ PCL_NCUT_SEG_SETTER(setNeckBound, double, p.stopping.neck_bound = value)
 PCL_NCUT_SEG_SETTER(setBoundaryBand, std::optional<double>, p.boundary.band = value)
 PCL_NCUT_SEG_SETTER(setBoundaryCreaseWeight, double, p.boundary.crease_weight = value)
 PCL_NCUT_SEG_SETTER(setRimMerge, std::optional<double>, p.boundary.rim_merge = value)
-PCL_NCUT_SEG_SETTER(setViewSmallSegment, std::optional<double>,
-                    p.boundary.view_small_segment = value)
 PCL_NCUT_SEG_SETTER(setNumberOfThreads, unsigned, p.execution.num_threads = value)
 
 #undef PCL_NCUT_SEG_SETTER
