@@ -108,7 +108,7 @@ struct SupernodeParams {
   float crossing_fraction = 0.3f;
 };
 
-/** \brief Sec. 4.3: local refinement; extensions: crease splits and cuts. */
+/** \brief Sec. 4.3: local refinement; extension: crease splits. */
 struct RefinementParams {
   float area_fraction = 0.01f;   ///< small: f_a below this fraction of the total (footnote 4)
   float height_fraction = 0.01f; ///< skinny: f_h below this fraction of the largest (footnote 5)
@@ -116,9 +116,6 @@ struct RefinementParams {
   /// concave bend (in units of the model's mean bend per kNN edge) is at least this. Off: the
   /// paper.
   std::optional<double> crease_split = 0.75;
-  /// Extension: split a supernode that no level cut splits along its minimum cut weighted by
-  /// concave bend when at least this share of the edges the cut crosses are concave.
-  std::optional<double> crease_cut;
 };
 
 /** \brief Sec. 7: CAD mode, the faces of a mechanical part separated at its ridges. */

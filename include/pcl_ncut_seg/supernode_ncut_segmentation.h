@@ -229,9 +229,6 @@ public:
   /** \param[in] concavity  refinement.crease_split, > 0; std::nullopt: off */
   void setCreaseSplit(std::optional<double> concavity);
   std::optional<double> getCreaseSplit() const { return params_.refinement.crease_split; }
-  /** \param[in] share  refinement.crease_cut, in (0, 1]; std::nullopt: off */
-  void setCreaseCut(std::optional<double> share);
-  std::optional<double> getCreaseCut() const { return params_.refinement.crease_cut; }
   /** \param[in] threads  execution.num_threads; 0: all cores. The output does not depend on
    * it. */
   void setNumberOfThreads(unsigned threads);

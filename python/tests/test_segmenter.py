@@ -11,7 +11,7 @@ TABLE = pcl_ncut_seg.parameter_table()
 OTHER = {
     "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "organized_rim": False, "single_view": False, "centrality_samples": 30, "centrality": "exact",
     "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
-    "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
+    "height_fraction": 0.02, "crease_split": None, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
     "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
@@ -41,7 +41,7 @@ def test_every_parameter_is_an_attribute_of_its_name():
     assert seg.k == 10 and isinstance(seg.k, int)
     assert seg.threshold == 0.1 and isinstance(seg.threshold, float)
     assert seg.crossing_fraction == 0.3  # a float field, read back as the same decimal
-    assert seg.crease_cut is None and seg.centrality_samples is None
+    assert seg.centrality_samples is None
     assert seg.cad is False and seg.centrality == "fast"
 
 

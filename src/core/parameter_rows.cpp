@@ -117,13 +117,6 @@ void refinementRows(Rows& t) {
           "least C",
           false),
       above(0), FIELD(refinement.crease_split), "off"));
-  t.push_back(number<double, std::optional<double>>(
-      row("crease_cut", "refinement.crease_cut", S::Refinement, K::Real, "S",
-          "crease cuts: split a supernode that no level cut splits along its minimum cut "
-          "weighted by concave bend when a share of at least S of the edges it crosses are "
-          "concave",
-          false),
-      leftOpen(0, 1), FIELD(refinement.crease_cut), "off"));
 }
 
 /// CAD (Sec. 7)

@@ -38,7 +38,6 @@ Parameters Parameters::paper() {
   p.centrality.mode = CentralityMode::Exact;
   p.centrality.starts = 1;
   p.refinement.crease_split.reset();
-  p.refinement.crease_cut.reset();
   p.similarity.normalize_width = false;
   p.similarity.adjacency = Adjacency::Saddles;
   p.similarity.concavity.reset();

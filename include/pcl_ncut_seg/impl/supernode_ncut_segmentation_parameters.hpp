@@ -49,7 +49,6 @@ PCL_NCUT_SEG_SETTER(setCrossingFraction, float, p.supernodes.crossing_fraction =
 PCL_NCUT_SEG_SETTER(setAreaFraction, float, p.refinement.area_fraction = value)
 PCL_NCUT_SEG_SETTER(setHeightFraction, float, p.refinement.height_fraction = value)
 PCL_NCUT_SEG_SETTER(setCreaseSplit, std::optional<double>, p.refinement.crease_split = value)
-PCL_NCUT_SEG_SETTER(setCreaseCut, std::optional<double>, p.refinement.crease_cut = value)
 PCL_NCUT_SEG_SETTER(setBridgeGap, std::optional<double>, p.graph.bridge_gap = value)
 PCL_NCUT_SEG_SETTER(setDenoise, std::optional<double>, p.graph.denoise = value)
 PCL_NCUT_SEG_SETTER(setIrregularSampling, std::optional<double>, p.graph.irregular_sampling = value)
