@@ -1,6 +1,6 @@
 /*
  * The options that extend the paper's cut (each one setting away from the paper): adjacent
- * supernode pairs in G_s, a minimum segment fraction, and the largest-gap stopping rule.
+ * supernode pairs in G_s and the largest-gap stopping rule.
  */
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
@@ -69,29 +69,6 @@ TEST(AdjacencyAll, AddsThePairsThatMeetAtNoSaddle) {
   EXPECT_EQ(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
                        m(3, 2)),
             -1);
-  // Member masses are the supernodes' feature areas.
-  ASSERT_EQ(all.mass.size(), 6u);
-  EXPECT_EQ(all.mass[0], 0.0);
-  EXPECT_EQ(all.mass[m(3, 2)], 1.0);
-}
-
-TEST(MinSegmentFraction, RefusesASplitThatLeavesASmallSide) {
-  // Two heavy members joined strongly, and a light member hanging by a weak edge.
-  const WeightedGraph g = memberGraph(3, {{0, 1, 1.0}, {1, 2, 1e-3}}, {10, 10, 0.5});
-  StoppingParams p;
-  p.rule = StoppingRule::Threshold; // the paper's recursive bisection
-  p.threshold = 0.1;
-  const Hierarchy paper = buildHierarchy(g, 3, p);
-  EXPECT_EQ(paper.leaves().size(), 2u) << "the light member is cut off";
-  p.min_segment_fraction = 0.05; // 0.5 of 20.5 is 2.4%
-  const Hierarchy guarded = buildHierarchy(g, 3, p);
-  EXPECT_EQ(guarded.leaves().size(), 1u);
-  p.min_segment_fraction = 0.02;
-  EXPECT_EQ(buildHierarchy(g, 3, p).leaves().size(), 2u);
-  // Without masses the option has nothing to weigh and changes nothing.
-  const WeightedGraph unweighted = memberGraph(3, {{0, 1, 1.0}, {1, 2, 1e-3}});
-  p.min_segment_fraction = 0.5;
-  EXPECT_EQ(buildHierarchy(unweighted, 3, p).leaves().size(), 2u);
 }
 
 TEST(LargestGap, StopsWhereTheNCutJumps) {

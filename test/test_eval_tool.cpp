@@ -169,7 +169,6 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
                                   (dir_ / "none").string() + " " + out,
                                   psb + " " + (dir_ / "none").string(),
                                   psb + " " + out + " -k 1",
-                                  psb + " " + out + " -fractions 0.1,0.7",
                                   psb + " " + out + " -thresholds 0.1,x",
                                   psb + " " + out + " -threshold 0.1 -thresholds 0.1,0.2",
                                   psb + " " + out + " -modes ,",

@@ -165,8 +165,8 @@ TEST(ParameterTable, ChoicesAndSwitchesReadTheirWords) {
 TEST(ParameterTable, OneNamePerParameter) {
   // The spellings of older releases are no names: each is an unknown parameter.
   for (const char* old : {"bridge", "cen_samples", "crossing", "area", "height", "crease", "share",
-                          "concavity_weight", "flat", "min_fraction", "maxseg", "gapfloor", "neck",
-                          "neckbound", "band", "bandcrease"}) {
+                          "concavity_weight", "flat", "maxseg", "gapfloor", "neck", "neckbound",
+                          "band", "bandcrease"}) {
     Parameters p;
     std::string why;
     EXPECT_EQ(findParameter(old), nullptr) << old;

@@ -151,12 +151,9 @@ struct SimilarityParams {
 /** \brief Sec. 5.2: the hierarchy of bisections and its stopping rule. */
 struct StoppingParams {
   StoppingRule rule = StoppingRule::ShortCut; ///< extension (Threshold: the paper)
-  double threshold = 0.1; ///< no part is split at a higher NCut (every rule but Count)
-  int num_splits = 100;   ///< uniform split values tried on each eigenvector
-  int segments = 2;       ///< Count: the number of segments asked for
-  /// Threshold: a part is bisected only if each side keeps at least this fraction of the
-  /// total feature area (off: the paper).
-  std::optional<double> min_segment_fraction;
+  double threshold = 0.1;     ///< no part is split at a higher NCut (every rule but Count)
+  int num_splits = 100;       ///< uniform split values tried on each eigenvector
+  int segments = 2;           ///< Count: the number of segments asked for
   int max_segments = 20;      ///< LargestGap, ShortCut: at most this many segments
   double gap_floor = 3e-3;    ///< LargestGap, ShortCut: NCuts below this count as this
   double neck_exponent = 3.0; ///< ShortCut: a split's NCut is weighted by neck^exponent

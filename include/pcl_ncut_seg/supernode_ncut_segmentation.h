@@ -133,11 +133,6 @@ public:
   /** \param[in] threshold  stopping.threshold, >= 0 */
   void setThreshold(double threshold);
   double getThreshold() const { return params_.stopping.threshold; }
-  /** \param[in] fraction  stopping.min_segment_fraction, in (0, 0.5]; std::nullopt: off */
-  void setMinSegmentFraction(std::optional<double> fraction);
-  std::optional<double> getMinSegmentFraction() const {
-    return params_.stopping.min_segment_fraction;
-  }
   /** \param[in] rule  stopping.rule */
   void setStoppingRule(pcl_ncut_seg::StoppingRule rule);
   pcl_ncut_seg::StoppingRule getStoppingRule() const { return params_.stopping.rule; }

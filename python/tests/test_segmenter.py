@@ -16,7 +16,7 @@ OTHER = {
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
     "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
     "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
-    "splits": 50, "min_segment_fraction": 0.1, "max_segments": 4, "gap_floor": 0.01,
+    "splits": 50, "max_segments": 4, "gap_floor": 0.01,
     "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
     "view_small_segment": 0.02,
     "threads": 1,

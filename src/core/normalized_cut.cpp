@@ -329,23 +329,11 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
     }
   } else {
     // Recursive bisection until NCut exceeds the threshold.
-    const double min_fraction = params.min_segment_fraction.value_or(0.0);
-    const bool use_mass = min_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
-    auto mass = [&](const std::vector<std::uint32_t>& vertices) {
-      double m = 0.0;
-      for (std::uint32_t v : vertices)
-        m += graph.mass[v];
-      return m;
-    };
-    const double min_mass = use_mass ? min_fraction * mass(h.nodes[0].vertices) : 0.0;
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const int i = stack.back();
       stack.pop_back();
       if (!h.nodes[i].has_split || h.nodes[i].ncut > params.threshold)
-        continue;
-      // A split that would leave a side below the minimum mass is refused (the part stays).
-      if (use_mass && std::min(mass(splits[i].v1), mass(splits[i].v2)) < min_mass)
         continue;
       split(i);
       stack.push_back(h.nodes[i].right);

@@ -233,12 +233,6 @@ void stoppingRows(Rows& t) {
       number<int, int>(row("splits", "stopping.num_splits", S::Stopping, K::Integer, "N",
                            "uniform split values tried on each eigenvector (Sec. 5.2)", true),
                        atLeast(1), FIELD(stopping.num_splits)));
-  t.push_back(number<double, std::optional<double>>(
-      row("min_segment_fraction", "stopping.min_segment_fraction", S::Stopping, K::Real, "F",
-          "threshold rule: a part is bisected only if each side keeps this fraction of the "
-          "feature area",
-          false),
-      leftOpen(0, 0.5), FIELD(stopping.min_segment_fraction), "off"));
   t.push_back(number<int, int>(row("max_segments", "stopping.max_segments", S::Stopping, K::Integer,
                                    "N", "largest_gap, short_cut: at most N segments", false),
                                atLeast(1), FIELD(stopping.max_segments)));

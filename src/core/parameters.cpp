@@ -43,7 +43,6 @@ Parameters Parameters::paper() {
   p.similarity.concavity.reset();
   p.similarity.flat_elongation.reset();
   p.stopping.rule = StoppingRule::Threshold;
-  p.stopping.min_segment_fraction.reset();
   p.boundary.band.reset();
   p.boundary.rim_merge.reset();
   p.boundary.view_small_segment.reset();

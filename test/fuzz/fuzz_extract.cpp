@@ -205,8 +205,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         seg.setAdjacency(pcl_ncut_seg::Adjacency::Trees);
     } else if ((options2 >> 4) & 3)
       seg.setAdjacentShare(kShare[(options2 >> 4) & 3]);
-    if (options2 & 0x40)
-      seg.setMinSegmentFraction(0.25);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
     static const Off kBand[] = {0, Off(), 0.5, 1e-3}, kCreaseSplit[] = {0, Off(), 1e-6, 1e3};

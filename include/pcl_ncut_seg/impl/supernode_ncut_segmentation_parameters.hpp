@@ -66,8 +66,6 @@ PCL_NCUT_SEG_SETTER(setFaceAngle, float, p.similarity.face_angle = value)
 PCL_NCUT_SEG_SETTER(setStoppingRule, pcl_ncut_seg::StoppingRule, p.stopping.rule = value)
 PCL_NCUT_SEG_SETTER(setThreshold, double, p.stopping.threshold = value)
 PCL_NCUT_SEG_SETTER(setNumberOfSplitValues, int, p.stopping.num_splits = value)
-PCL_NCUT_SEG_SETTER(setMinSegmentFraction, std::optional<double>,
-                    p.stopping.min_segment_fraction = value)
 PCL_NCUT_SEG_SETTER(setMaxSegments, int, p.stopping.max_segments = value)
 PCL_NCUT_SEG_SETTER(setGapFloor, double, p.stopping.gap_floor = value)
 PCL_NCUT_SEG_SETTER(setNeckExponent, double, p.stopping.neck_exponent = value)
