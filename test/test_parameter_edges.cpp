@@ -92,9 +92,6 @@ std::vector<ParamCase> validEdges() {
     v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
                  [n](const Seg& s) { return s.getMaxSegments() == n; }});
   for (double x : {dmin, dmax})
-    v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
-                 [x](const Seg& s) { return s.getGapFloor() == x; }});
-  for (double x : {dmin, dmax})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
                  [x](const Seg& s) { return s.getNeckExponent() == x; }});
   for (double x : {dmin, dmax})
@@ -162,9 +159,6 @@ std::vector<ParamCase> justPast() {
   for (int n : {0, -1, INT_MIN})
     v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
                  [](const Seg& s) { return s.getMaxSegments() != Seg().getMaxSegments(); }});
-  for (double x : {0.0, -dmin, dinf, dnan})
-    v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
-                 [](const Seg& s) { return s.getGapFloor() != Seg().getGapFloor(); }});
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
                  [](const Seg& s) {

@@ -54,10 +54,9 @@ enum class Adjacency {
 
 /** \brief When the recursive bisection of Sec. 5.2 stops. */
 enum class StoppingRule {
-  Threshold,  ///< the paper: bisect a part while its best NCut is at most the threshold
-  LargestGap, ///< best-first splits up to the largest relative jump in NCut
-  ShortCut,   ///< best-first splits weighted by how short their boundary is (core/short_cut.h)
-  Count       ///< best-first splits until a given number of segments
+  Threshold, ///< the paper: bisect a part while its best NCut is at most the threshold
+  ShortCut,  ///< best-first splits weighted by how short their boundary is (core/short_cut.h)
+  Count      ///< best-first splits until a given number of segments
 };
 
 /** \brief Sec. 4.1: the kNN graph. */
@@ -154,8 +153,7 @@ struct StoppingParams {
   double threshold = 0.1;     ///< no part is split at a higher NCut (every rule but Count)
   int num_splits = 100;       ///< uniform split values tried on each eigenvector
   int segments = 2;           ///< Count: the number of segments asked for
-  int max_segments = 20;      ///< LargestGap, ShortCut: at most this many segments
-  double gap_floor = 3e-3;    ///< LargestGap, ShortCut: NCuts below this count as this
+  int max_segments = 20;      ///< ShortCut: at most this many segments
   double neck_exponent = 3.0; ///< ShortCut: a split's NCut is weighted by neck^exponent
   double neck_bound = 0.25;   ///< ShortCut: the weighted NCut below which a split is worth it
 };

@@ -139,9 +139,6 @@ public:
   /** \param[in] segments  stopping.max_segments, >= 1 */
   void setMaxSegments(int segments);
   int getMaxSegments() const { return params_.stopping.max_segments; }
-  /** \param[in] floor  stopping.gap_floor, > 0 */
-  void setGapFloor(double floor);
-  double getGapFloor() const { return params_.stopping.gap_floor; }
   /** \param[in] exponent  stopping.neck_exponent, > 0 (read by the short-cut rule) */
   void setNeckExponent(double exponent);
   double getNeckExponent() const { return params_.stopping.neck_exponent; }

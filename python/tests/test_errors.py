@@ -54,8 +54,8 @@ def test_value_out_of_range(name, value, shown):
 
 
 def test_words():
-    with pytest.raises(ValueError, match="^stopping must be one of threshold, largest_gap, "
-                       "short_cut, count, got 'gap'$"):
+    with pytest.raises(ValueError, match="^stopping must be one of threshold, short_cut, "
+                       "count, got 'gap'$"):
         pcl_ncut_seg.segment(GOOD, stopping="gap")
     with pytest.raises(ValueError, match="^cad must be on or off, got 'yes'$"):
         pcl_ncut_seg.segment(GOOD, cad="yes")

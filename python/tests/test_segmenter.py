@@ -15,8 +15,8 @@ OTHER = {
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
     "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
-    "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
-    "splits": 50, "max_segments": 4, "gap_floor": 0.01,
+    "face_angle": 20.0, "stopping": "threshold", "threshold": 0.2, "segments": 3,
+    "splits": 50, "max_segments": 4,
     "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
     "view_small_segment": 0.02,
     "threads": 1,
@@ -61,7 +61,7 @@ def test_setting_each_parameter_by_attribute_and_keyword():
 
 
 def test_parameters_given_back_as_keywords_set_the_same():
-    for keywords in ({}, {"paper": True}, {"segments": 4}, {"stopping": "largest_gap"},
+    for keywords in ({}, {"paper": True}, {"segments": 4}, {"stopping": "threshold"},
                      {"segments": 4, "stopping": "threshold"},
                      {"paper": True, "segments": 3, "threshold": 0.3}, dict(OTHER, cad=False)):
         seg = pcl_ncut_seg.Segmenter(**keywords)

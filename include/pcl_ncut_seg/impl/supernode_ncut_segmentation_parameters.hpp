@@ -67,7 +67,6 @@ PCL_NCUT_SEG_SETTER(setStoppingRule, pcl_ncut_seg::StoppingRule, p.stopping.rule
 PCL_NCUT_SEG_SETTER(setThreshold, double, p.stopping.threshold = value)
 PCL_NCUT_SEG_SETTER(setNumberOfSplitValues, int, p.stopping.num_splits = value)
 PCL_NCUT_SEG_SETTER(setMaxSegments, int, p.stopping.max_segments = value)
-PCL_NCUT_SEG_SETTER(setGapFloor, double, p.stopping.gap_floor = value)
 PCL_NCUT_SEG_SETTER(setNeckExponent, double, p.stopping.neck_exponent = value)
 PCL_NCUT_SEG_SETTER(setNeckBound, double, p.stopping.neck_bound = value)
 PCL_NCUT_SEG_SETTER(setBoundaryBand, std::optional<double>, p.boundary.band = value)
