@@ -41,11 +41,14 @@ double offMajorityShare(const std::vector<int>& supernode, const std::vector<int
   return double(off) / double(part.size());
 }
 
-/// Refined supernode labels of a shape with the other defaults and crease splits at c.
-std::vector<int> refinedSupernodes(const test::LabeledShape& shape, std::optional<double> c) {
+/// Refined supernode labels of a shape with the other defaults, crease splits at c and the
+/// given number of threads (0: all cores).
+std::vector<int> refinedSupernodes(const test::LabeledShape& shape, std::optional<double> c,
+                                   unsigned threads = 0) {
   Segmenter seg;
   seg.setInputCloud(shape.cloud);
   seg.setCreaseSplit(c);
+  seg.setNumberOfThreads(threads);
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
   return seg.getSupernodeLabels(true);
@@ -145,6 +148,20 @@ TEST(CreaseSplit, SeparatesPartsThatShareASupernode) {
     after_sum += after;
   }
   EXPECT_LT(after_sum, 0.75 * before_sum);
+}
+
+TEST(CreaseSplit, SameSupernodesForAnyThreadCount) {
+  // The first sweep of each supernode runs on several threads; the result must not depend on
+  // how many.
+  const std::optional<double> c = Segmenter().getCreaseSplit();
+  bool changed = false;
+  for (const auto& shape : {test::makeQuadruped(4000, 1), test::makeHand(4000, 2)}) {
+    const std::vector<int> one = refinedSupernodes(shape, c, 1);
+    EXPECT_EQ(refinedSupernodes(shape, c, 2), one);
+    EXPECT_EQ(refinedSupernodes(shape, c, 4), one);
+    changed = changed || one != refinedSupernodes(shape, std::nullopt, 1);
+  }
+  EXPECT_TRUE(changed) << "crease splits changed no supernode of either shape";
 }
 
 TEST(CreaseSplit, SetterChecksItsValueAndNulloptIsThePaper) {

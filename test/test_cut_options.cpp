@@ -1,8 +1,7 @@
 /*
  * The options that extend the paper's cut (each one setting away from the paper): adjacent
- * supernode pairs in G_s, a minimum segment fraction, and the largest-gap stopping rule.
+ * supernode pairs in G_s.
  */
-#include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
 
 #include "support/graphs.h"
@@ -13,7 +12,6 @@
 
 using namespace pcl_ncut_seg;
 using test::edgeWeight;
-using test::memberGraph;
 
 namespace {
 
@@ -69,63 +67,4 @@ TEST(AdjacencyAll, AddsThePairsThatMeetAtNoSaddle) {
   EXPECT_EQ(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
                        m(3, 2)),
             -1);
-  // Member masses are the supernodes' feature areas.
-  ASSERT_EQ(all.mass.size(), 6u);
-  EXPECT_EQ(all.mass[0], 0.0);
-  EXPECT_EQ(all.mass[m(3, 2)], 1.0);
-}
-
-TEST(MinSegmentFraction, RefusesASplitThatLeavesASmallSide) {
-  // Two heavy members joined strongly, and a light member hanging by a weak edge.
-  const WeightedGraph g = memberGraph(3, {{0, 1, 1.0}, {1, 2, 1e-3}}, {10, 10, 0.5});
-  StoppingParams p;
-  p.rule = StoppingRule::Threshold; // the paper's recursive bisection
-  p.threshold = 0.1;
-  const Hierarchy paper = buildHierarchy(g, 3, p);
-  EXPECT_EQ(paper.leaves().size(), 2u) << "the light member is cut off";
-  p.min_segment_fraction = 0.05; // 0.5 of 20.5 is 2.4%
-  const Hierarchy guarded = buildHierarchy(g, 3, p);
-  EXPECT_EQ(guarded.leaves().size(), 1u);
-  p.min_segment_fraction = 0.02;
-  EXPECT_EQ(buildHierarchy(g, 3, p).leaves().size(), 2u);
-  // Without masses the option has nothing to weigh and changes nothing.
-  const WeightedGraph unweighted = memberGraph(3, {{0, 1, 1.0}, {1, 2, 1e-3}});
-  p.min_segment_fraction = 0.5;
-  EXPECT_EQ(buildHierarchy(unweighted, 3, p).leaves().size(), 2u);
-}
-
-TEST(LargestGap, StopsWhereTheNCutJumps) {
-  // Three tight pairs {0,1}, {2,3}, {4,5} (weight 1) in a chain joined by weak edges (1e-3):
-  // two cheap splits, then every further split costs orders of magnitude more.
-  const WeightedGraph g =
-      memberGraph(6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
-  StoppingParams p;
-  p.rule = StoppingRule::Threshold;
-  p.threshold = 2.0; // the paper's rule splits everything that can be split
-  EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 6u);
-  p.rule = StoppingRule::LargestGap;
-  p.gap_floor = 1e-3;
-  const Hierarchy h = buildHierarchy(g, 6, p);
-  ASSERT_EQ(h.leaves().size(), 3u);
-  for (int leaf : h.leaves())
-    EXPECT_EQ(h.nodes[leaf].vertices.size(), 4u) << "a pair with its representatives";
-  // The bound on the number of parts holds.
-  p.max_segments = 2;
-  EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 2u);
-  // Every kept split is within the threshold.
-  p.max_segments = 20;
-  p.threshold = 1e-4;
-  EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 1u);
-}
-
-TEST(LargestGap, KeepsAtLeastOneSplitWithinTheThreshold) {
-  // A uniform chain: every split costs about the same, so the gap rule has no jump to find;
-  // it still makes the first split (and never more than max_segments parts).
-  const WeightedGraph g = memberGraph(4, {{0, 1, 1.0}, {1, 2, 1.0}, {2, 3, 1.0}});
-  StoppingParams p;
-  p.threshold = 2.0;
-  p.rule = StoppingRule::LargestGap;
-  const std::size_t leaves = buildHierarchy(g, 4, p).leaves().size();
-  EXPECT_GE(leaves, 2u);
-  EXPECT_LE(leaves, 4u);
 }

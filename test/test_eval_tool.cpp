@@ -169,13 +169,12 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
                                   (dir_ / "none").string() + " " + out,
                                   psb + " " + (dir_ / "none").string(),
                                   psb + " " + out + " -k 1",
-                                  psb + " " + out + " -fractions 0.1,0.7",
                                   psb + " " + out + " -thresholds 0.1,x",
                                   psb + " " + out + " -threshold 0.1 -thresholds 0.1,0.2",
                                   psb + " " + out + " -modes ,",
-                                  psb + " " + out + " -crease_cut 2",
-                                  psb + " " + out + " -crease_cut 0.1 -crease_cut 0.2",
-                                  psb + " " + out + " -creasecut 0.2",
+                                  psb + " " + out + " -crease_split 0",
+                                  psb + " " + out + " -crease_split 0.1 -crease_split 0.2",
+                                  psb + " " + out + " -creasesplit 0.2",
                                   psb + " " + out + " -neck_exponent 0",
                                   psb + " " + out + " -segments 3 -thresholds 0.1,0.2",
                                   psb + " " + out + " -bogus",
@@ -244,7 +243,7 @@ TEST_F(EvalTool, SamplesDrawsAndWritesTheSpread) {
 TEST_F(EvalTool, TakesTheToolsFlags) {
   const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
                            " -methods ours -modes auto -quiet ";
-  ASSERT_EQ(run(args + "-crease_cut 0.3 -neck_exponent 2 -boundary_band 0.1 -bridge_gap 2"), 0)
+  ASSERT_EQ(run(args + "-crease_split 0.5 -neck_exponent 2 -boundary_band 0.1 -bridge_gap 2"), 0)
       << stderrText();
   EXPECT_FALSE(models().empty());
 }

@@ -88,16 +88,9 @@ std::vector<ParamCase> validEdges() {
   for (unsigned n : {0u, 1u, 64u, UINT_MAX})
     v.push_back({"setNumberOfThreads", [n](Seg& s) { s.setNumberOfThreads(n); },
                  [n](const Seg& s) { return s.getNumberOfThreads() == n; }});
-  for (std::optional<double> x :
-       {std::optional<double>(), std::optional<double>(dmin), std::optional<double>(0.5)})
-    v.push_back({"setMinSegmentFraction", [x](Seg& s) { s.setMinSegmentFraction(x); },
-                 [x](const Seg& s) { return s.getMinSegmentFraction() == x; }});
   for (int n : {1, INT_MAX})
     v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
                  [n](const Seg& s) { return s.getMaxSegments() == n; }});
-  for (double x : {dmin, dmax})
-    v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
-                 [x](const Seg& s) { return s.getGapFloor() == x; }});
   for (double x : {dmin, dmax})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
                  [x](const Seg& s) { return s.getNeckExponent() == x; }});
@@ -163,16 +156,9 @@ std::vector<ParamCase> justPast() {
   for (int n : {0, -1, INT_MIN})
     v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
                  [](const Seg& s) { return s.getNumberOfSplitValues() != 100; }});
-  for (double x : {0.0, -dmin, std::nextafter(0.5, 1.0), dinf, dnan})
-    v.push_back(
-        {"setMinSegmentFraction", [x](Seg& s) { s.setMinSegmentFraction(x); },
-         [](const Seg& s) { return s.getMinSegmentFraction() != Seg().getMinSegmentFraction(); }});
   for (int n : {0, -1, INT_MIN})
     v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
                  [](const Seg& s) { return s.getMaxSegments() != Seg().getMaxSegments(); }});
-  for (double x : {0.0, -dmin, dinf, dnan})
-    v.push_back({"setGapFloor", [x](Seg& s) { s.setGapFloor(x); },
-                 [](const Seg& s) { return s.getGapFloor() != Seg().getGapFloor(); }});
   for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
                  [](const Seg& s) {

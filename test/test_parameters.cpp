@@ -147,8 +147,8 @@ TEST(ParameterTable, ValidateFindsAFieldSetPastItsRangeInCode) {
 
 TEST(ParameterTable, ChoicesAndSwitchesReadTheirWords) {
   Parameters p;
-  EXPECT_TRUE(setParameter(p, "stopping", "largest_gap"));
-  EXPECT_EQ(p.stopping.rule, StoppingRule::LargestGap);
+  EXPECT_TRUE(setParameter(p, "stopping", "threshold"));
+  EXPECT_EQ(p.stopping.rule, StoppingRule::Threshold);
   EXPECT_TRUE(setParameter(p, "segments", "5"));
   EXPECT_EQ(p.stopping.rule, StoppingRule::Count) << "asking for segments is the count rule";
   EXPECT_EQ(p.stopping.segments, 5);
@@ -164,9 +164,9 @@ TEST(ParameterTable, ChoicesAndSwitchesReadTheirWords) {
 
 TEST(ParameterTable, OneNamePerParameter) {
   // The spellings of older releases are no names: each is an unknown parameter.
-  for (const char* old : {"bridge", "cen_samples", "crossing", "area", "height", "crease",
-                          "creasecut", "share", "concavity_weight", "flat", "min_fraction",
-                          "maxseg", "gapfloor", "neck", "neckbound", "band", "bandcrease"}) {
+  for (const char* old :
+       {"bridge", "cen_samples", "crossing", "area", "height", "crease", "share",
+        "concavity_weight", "flat", "maxseg", "neck", "neckbound", "band", "bandcrease"}) {
     Parameters p;
     std::string why;
     EXPECT_EQ(findParameter(old), nullptr) << old;

@@ -120,15 +120,15 @@ TEST(ShortCut, KeepsTheSubtreeWithTheHighestSumOfWorths) {
   EXPECT_TRUE(shortCutKeep({}, {}, {}).empty());
 }
 
-TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
-  // Three tight pairs in a chain joined by weak edges: the largest gap keeps the two cheap
-  // splits (three parts).
+TEST(ShortCut, WeighsEachSplitOfTheHierarchyByItsNeck) {
+  // Three tight pairs in a chain joined by weak edges: two cheap splits (three parts), then
+  // dear ones.
   const WeightedGraph g =
       memberGraph(6, {{0, 1, 1.0}, {2, 3, 1.0}, {4, 5, 1.0}, {1, 2, 1e-3}, {3, 4, 1e-3}});
   StoppingParams p;
   p.threshold = 2.0;
-  p.gap_floor = 1e-3;
-  p.rule = StoppingRule::LargestGap;
+  p.rule = StoppingRule::ShortCut;
+  p.neck_exponent = 3.0;
   int calls = 0;
   double neck_value = 1.0;
   const SplitNeckFn neck = [&](const std::vector<std::uint32_t>& v1,
@@ -138,10 +138,6 @@ TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
     EXPECT_FALSE(v2.empty());
     return neck_value;
   };
-  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
-  EXPECT_EQ(calls, 0) << "the largest gap: no neck measured";
-  p.rule = StoppingRule::ShortCut;
-  p.neck_exponent = 3.0;
   // Short boundaries: the cheap splits are worth it, the dear ones (NCut about 1) are not.
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
   EXPECT_GT(calls, 0);
@@ -153,15 +149,16 @@ TEST(ShortCut, ReplacesTheLargestGapInTheHierarchy) {
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 6u);
   p.threshold = 0.01;
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 3u);
-  // Without a neck measure the largest gap is used.
+  // Without a neck measure the NCut alone weighs, as with short boundaries.
   p.threshold = 2.0;
   p.neck_bound = 0.25;
-  neck_value = 10.0;
   EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 3u);
-  // A given number of segments ignores the rule.
+  // A given number of segments ignores the rule and measures no neck.
   p.rule = StoppingRule::Count;
   p.segments = 4;
+  calls = 0;
   EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 4u);
+  EXPECT_EQ(calls, 0);
 }
 
 TEST(ShortCut, SettersRejectBadValues) {
@@ -177,13 +174,13 @@ TEST(ShortCut, SettersRejectBadValues) {
     seg.setNeckBound(bad);
     EXPECT_EQ(seg.getNeckBound(), 0.5);
   }
-  // 0 is no exponent: the largest-gap rule is a rule of its own (setStoppingRule).
+  // A bad value changes no rule either.
   EXPECT_EQ(seg.getStoppingRule(), pcl_ncut_seg::StoppingRule::ShortCut);
 }
 
 TEST(ShortCut, TheOptionReachesTheSegmentation) {
   // A generated hand: the fingers are cut off across their narrow bases. A bound no split
-  // reaches leaves one segment; then the largest-gap rule.
+  // reaches leaves one segment.
   const auto hand = pcl_ncut_seg::test::makeHand(4000, 1);
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
   seg.setInputCloud(hand.cloud);
@@ -193,11 +190,6 @@ TEST(ShortCut, TheOptionReachesTheSegmentation) {
   seg.setNeckBound(1e-12);
   seg.extract(segments);
   EXPECT_EQ(segments.size(), 1u);
-  seg.setNeckBound(0.25);
-  seg.setStoppingRule(pcl_ncut_seg::StoppingRule::LargestGap);
-  seg.extract(segments);
-  const std::size_t largest_gap = segments.size();
-  std::cout << "generated hand (6 parts): " << by_default << " segments with the short-cut rule, "
-            << largest_gap << " with the largest gap\n";
+  std::cout << "generated hand (6 parts): " << by_default << " segments with the short-cut rule\n";
   EXPECT_GE(by_default, 6u);
 }

@@ -170,8 +170,8 @@ TEST_F(ToolTest, PaperIsAPresetTheFlagsApplyOnTop) {
 TEST_F(ToolTest, OldSpellingsAreUnknownOptions) {
   // One name per parameter: the spellings of older releases fail as any unknown option.
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
-  for (const char* old : {"-crossing 0.25", "-crease 0.5", "-creasecut 0.5", "-flat 0.2", "-neck 2",
-                          "-band 0.1", "-cen_samples 40"}) {
+  for (const char* old :
+       {"-crossing 0.25", "-crease 0.5", "-flat 0.2", "-neck 2", "-band 0.1", "-cen_samples 40"}) {
     const std::string flag = std::string(old).substr(0, std::string(old).find(' '));
     expectCleanFailure(std::string("shape.pcd old.pcd ") + old, "unknown option " + flag);
   }

@@ -97,10 +97,6 @@ std::vector<Flag> runFlags() {
                "NCut thresholds for 'ours' in auto mode, each its own row (a sweep of "
                "-threshold that reuses each model's expensive stage)",
                "-threshold"),
-      textFlag("-fractions", "LIST",
-               "minimum segment fractions for 'ours' in auto mode, each in [0, 0.5] (0: off) "
-               "and its own row with every threshold (a sweep of -min_segment_fraction)",
-               "-min_segment_fraction"),
   };
   rows[0].check = [](const std::string& t, std::string* why) {
     std::vector<std::string> items;
@@ -117,10 +113,6 @@ std::vector<Flag> runFlags() {
   rows[3].check = [](const std::string& t, std::string* why) {
     std::vector<double> v;
     return parseNumbers(t, 0, 1e308, v, why);
-  };
-  rows[4].check = [](const std::string& t, std::string* why) {
-    std::vector<double> v;
-    return parseNumbers(t, 0, 0.5, v, why);
   };
   return rows;
 }
@@ -177,7 +169,7 @@ void readViewOptions(const Flags& flags, Options& o) {
       throw Failure(std::string(name) + " needs -views");
   if (!views)
     return;
-  for (const char* name : {"-modes", "-thresholds", "-fractions"})
+  for (const char* name : {"-modes", "-thresholds"})
     if (flags.has(name))
       throw Failure(std::string("-views scores the automatic mode with the parameters given; "
                                 "it takes no ") +
@@ -323,17 +315,13 @@ void printHelp() {
 Options readOptions(const Flags& flags) {
   if (flags.files.size() != 2)
     throw Failure("expected <psb_dir> <out_dir> (see -h)");
-  for (const auto& [list, single] :
-       {std::pair<const char*, const char*>{"-thresholds", "-threshold"},
-        {"-fractions", "-min_segment_fraction"}})
-    if (flags.has(list) && flags.has(single))
-      throw Failure(std::string("give either ") + single + " or " + list + ", not both");
+  if (flags.has("-thresholds") && flags.has("-threshold"))
+    throw Failure("give either -threshold or -thresholds, not both");
   Options o;
   if (!parametersFromFlags(flags, evalDefaults(), o.params))
     throw Failure(""); // said why
-  if (o.params.stopping.rule == pcl_ncut_seg::StoppingRule::Count &&
-      (flags.has("-thresholds") || flags.has("-fractions")))
-    throw Failure("the count rule (-segments) takes no -thresholds or -fractions");
+  if (o.params.stopping.rule == pcl_ncut_seg::StoppingRule::Count && flags.has("-thresholds"))
+    throw Failure("the count rule (-segments) takes no -thresholds");
   o.psb_dir = flags.files[0];
   o.out_dir = flags.files[1];
   std::string why;
@@ -345,8 +333,6 @@ Options readOptions(const Flags& flags) {
     parseIds(flags.text("-ids"), o.ids, &why);
   if (flags.has("-thresholds"))
     parseNumbers(flags.text("-thresholds"), 0, 1e308, o.thresholds, &why);
-  if (flags.has("-fractions"))
-    parseNumbers(flags.text("-fractions"), 0, 0.5, o.fractions, &why);
   o.sampling = readSampling(flags);
   o.quiet = flags.has("-quiet");
   readViewOptions(flags, o);

@@ -43,7 +43,6 @@ struct Options {
   std::vector<std::string> methods = kAllMethods, modes = kAllModes;
   std::vector<int> ids;           ///< empty: every off/<id>.off
   std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
-  std::vector<double> fractions;  ///< auto mode (0: off); empty: the parameters' fraction
   SamplingOptions sampling;       ///< the points of each model; default: the face centroids
   bool quiet = false;
   int views = 0; ///< depth-camera views per model; 0: the whole objects

@@ -198,38 +198,26 @@ void addBothModes(const Options& opt, Row r, Report& report) {
   }
 }
 
-/** One auto-mode setting of 'ours': a threshold and a minimum segment fraction (0: off),
- * and its row's method name ("ours", or "ours t=... f=..." in a sweep). */
+/** One auto-mode setting of 'ours': a threshold, and its row's method name ("ours", or
+ * "ours t=..." in a sweep). */
 struct OursSetting {
-  double threshold, fraction;
+  double threshold;
   std::string name;
 
   pcl_ncut_seg::Parameters applied(pcl_ncut_seg::Parameters p) const {
     p.stopping.threshold = threshold;
-    p.stopping.min_segment_fraction.reset();
-    if (fraction > 0)
-      p.stopping.min_segment_fraction = fraction;
     return p;
   }
 };
 
-/** Every threshold with every fraction; without a list, the parameters' own value. */
+/** Every threshold; without a list, the parameters' own. */
 std::vector<OursSetting> oursSettings(const Options& opt) {
-  std::vector<double> thresholds = opt.thresholds, fractions = opt.fractions;
+  std::vector<double> thresholds = opt.thresholds;
   if (thresholds.empty())
     thresholds.push_back(opt.params.stopping.threshold);
-  if (fractions.empty())
-    fractions.push_back(opt.params.stopping.min_segment_fraction.value_or(0.0));
   std::vector<OursSetting> settings;
   for (double t : thresholds)
-    for (double f : fractions) {
-      std::string name = "ours";
-      if (thresholds.size() > 1)
-        name += " t=" + fixed(t, 4);
-      if (fractions.size() > 1)
-        name += " f=" + fixed(f, 3);
-      settings.push_back({t, f, name});
-    }
+    settings.push_back({t, thresholds.size() > 1 ? "ours t=" + fixed(t, 4) : "ours"});
   return settings;
 }
 

@@ -98,9 +98,8 @@ ColorCloud::Ptr Scene::colours(View view, std::string& title) const {
   if (view == View::Segments || view == View::Coarser || view == View::Finer) {
     t << "Segments: t = " << current_segments_;
     if (current_segments_ == first_segments_ && first_rule_ != StoppingRule::Count)
-      t << (first_rule_ == StoppingRule::ShortCut     ? " (short-cut rule, NCut <= "
-            : first_rule_ == StoppingRule::LargestGap ? " (largest NCut gap, NCut <= "
-                                                      : " (NCut threshold ")
+      t << (first_rule_ == StoppingRule::ShortCut ? " (short-cut rule, NCut <= "
+                                                  : " (NCut threshold ")
         << first_threshold_ << ")";
     else if (current_segments_ != first_segments_)
       t << " (hierarchy, " << (current_segments_ > first_segments_ ? "finer" : "coarser")

@@ -25,7 +25,7 @@ enum class ValueKind {
 
 /** \brief One row of the table. */
 struct ParameterInfo {
-  std::string name;       ///< "k", "crease_cut": the flag is "-k", the Python keyword k
+  std::string name;       ///< "k", "crease_split": the flag is "-k", the Python keyword k
   std::string field;      ///< its field in Parameters ("graph.k")
   Stage stage;            ///< the stage that reads it; analysis stages invalidate the analysis
   ValueKind kind;         ///< what it takes

@@ -54,10 +54,9 @@ enum class Adjacency {
 
 /** \brief When the recursive bisection of Sec. 5.2 stops. */
 enum class StoppingRule {
-  Threshold,  ///< the paper: bisect a part while its best NCut is at most the threshold
-  LargestGap, ///< best-first splits up to the largest relative jump in NCut
-  ShortCut,   ///< best-first splits weighted by how short their boundary is (core/short_cut.h)
-  Count       ///< best-first splits until a given number of segments
+  Threshold, ///< the paper: bisect a part while its best NCut is at most the threshold
+  ShortCut,  ///< best-first splits weighted by how short their boundary is (core/short_cut.h)
+  Count      ///< best-first splits until a given number of segments
 };
 
 /** \brief Sec. 4.1: the kNN graph. */
@@ -106,7 +105,7 @@ struct SupernodeParams {
   float crossing_fraction = 0.3f;
 };
 
-/** \brief Sec. 4.3: local refinement; extensions: crease splits and cuts. */
+/** \brief Sec. 4.3: local refinement; extension: crease splits. */
 struct RefinementParams {
   float area_fraction = 0.01f;   ///< small: f_a below this fraction of the total (footnote 4)
   float height_fraction = 0.01f; ///< skinny: f_h below this fraction of the largest (footnote 5)
@@ -114,9 +113,6 @@ struct RefinementParams {
   /// concave bend (in units of the model's mean bend per kNN edge) is at least this. Off: the
   /// paper.
   std::optional<double> crease_split = 0.75;
-  /// Extension: split a supernode that no level cut splits along its minimum cut weighted by
-  /// concave bend when at least this share of the edges the cut crosses are concave.
-  std::optional<double> crease_cut;
 };
 
 /** \brief Sec. 7: CAD mode, the faces of a mechanical part separated at its ridges. */
@@ -152,14 +148,10 @@ struct SimilarityParams {
 /** \brief Sec. 5.2: the hierarchy of bisections and its stopping rule. */
 struct StoppingParams {
   StoppingRule rule = StoppingRule::ShortCut; ///< extension (Threshold: the paper)
-  double threshold = 0.1; ///< no part is split at a higher NCut (every rule but Count)
-  int num_splits = 100;   ///< uniform split values tried on each eigenvector
-  int segments = 2;       ///< Count: the number of segments asked for
-  /// Threshold: a part is bisected only if each side keeps at least this fraction of the
-  /// total feature area (off: the paper).
-  std::optional<double> min_segment_fraction;
-  int max_segments = 20;      ///< LargestGap, ShortCut: at most this many segments
-  double gap_floor = 3e-3;    ///< LargestGap, ShortCut: NCuts below this count as this
+  double threshold = 0.1;     ///< no part is split at a higher NCut (every rule but Count)
+  int num_splits = 100;       ///< uniform split values tried on each eigenvector
+  int segments = 2;           ///< Count: the number of segments asked for
+  int max_segments = 20;      ///< ShortCut: at most this many segments
   double neck_exponent = 3.0; ///< ShortCut: a split's NCut is weighted by neck^exponent
   double neck_bound = 0.25;   ///< ShortCut: the weighted NCut below which a split is worth it
 };

@@ -133,20 +133,12 @@ public:
   /** \param[in] threshold  stopping.threshold, >= 0 */
   void setThreshold(double threshold);
   double getThreshold() const { return params_.stopping.threshold; }
-  /** \param[in] fraction  stopping.min_segment_fraction, in (0, 0.5]; std::nullopt: off */
-  void setMinSegmentFraction(std::optional<double> fraction);
-  std::optional<double> getMinSegmentFraction() const {
-    return params_.stopping.min_segment_fraction;
-  }
   /** \param[in] rule  stopping.rule */
   void setStoppingRule(pcl_ncut_seg::StoppingRule rule);
   pcl_ncut_seg::StoppingRule getStoppingRule() const { return params_.stopping.rule; }
   /** \param[in] segments  stopping.max_segments, >= 1 */
   void setMaxSegments(int segments);
   int getMaxSegments() const { return params_.stopping.max_segments; }
-  /** \param[in] floor  stopping.gap_floor, > 0 */
-  void setGapFloor(double floor);
-  double getGapFloor() const { return params_.stopping.gap_floor; }
   /** \param[in] exponent  stopping.neck_exponent, > 0 (read by the short-cut rule) */
   void setNeckExponent(double exponent);
   double getNeckExponent() const { return params_.stopping.neck_exponent; }
@@ -222,9 +214,6 @@ public:
   /** \param[in] concavity  refinement.crease_split, > 0; std::nullopt: off */
   void setCreaseSplit(std::optional<double> concavity);
   std::optional<double> getCreaseSplit() const { return params_.refinement.crease_split; }
-  /** \param[in] share  refinement.crease_cut, in (0, 1]; std::nullopt: off */
-  void setCreaseCut(std::optional<double> share);
-  std::optional<double> getCreaseCut() const { return params_.refinement.crease_cut; }
   /** \param[in] threads  execution.num_threads; 0: all cores. The output does not depend on
    * it. */
   void setNumberOfThreads(unsigned threads);

@@ -25,7 +25,7 @@ N int32 labels: 1 to t for the t segments (numbered by their first point), 0 for
 segment: the labels of pcl::SupernodeNCutSegmentation and of the pcl_ncut_seg tool.
 
 Parameters go by the tool's flag names without the '-' (k=12, threshold=0.1, segments=6,
-crease_cut=0.5, ...); parameter_table() lists them. None turns an
+crease_split=0.5, ...); parameter_table() lists them. None turns an
 optional extension off (or to auto), True/False are on/off, paper=True starts from the paper
 to the letter instead of the project's defaults. A bad array or parameter raises ValueError
 with the library's reason. Segmenter keeps the expensive stage between calls.)doc";

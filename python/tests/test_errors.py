@@ -42,7 +42,7 @@ def test_no_finite_point():
 @pytest.mark.parametrize("name,value,shown", [
     ("k", 1, "1"), ("k", 2.5, "2.5"), ("k", None, "None"), ("k", "ten", "ten"),
     ("threshold", -0.1, "-0.1"), ("threshold", float("nan"), "nan"),
-    ("threshold", float("inf"), "inf"), ("crease_cut", 1.5, "1.5"), ("crease_split", 0, "0"),
+    ("threshold", float("inf"), "inf"), ("boundary_band", 1.5, "1.5"), ("crease_split", 0, "0"),
     ("boundary_band", True, "on"), ("centrality_samples", 0, "0"), ("threads", -1, "-1"),
     ("crossing_fraction", 2, "2"), ("segments", 0, "0"),
 ])
@@ -54,8 +54,8 @@ def test_value_out_of_range(name, value, shown):
 
 
 def test_words():
-    with pytest.raises(ValueError, match="^stopping must be one of threshold, largest_gap, "
-                       "short_cut, count, got 'gap'$"):
+    with pytest.raises(ValueError, match="^stopping must be one of threshold, short_cut, "
+                       "count, got 'gap'$"):
         pcl_ncut_seg.segment(GOOD, stopping="gap")
     with pytest.raises(ValueError, match="^cad must be on or off, got 'yes'$"):
         pcl_ncut_seg.segment(GOOD, cad="yes")

@@ -69,9 +69,9 @@ def test_parameters_by_name(points):
     three = pcl_ncut_seg.segment(points, segments=3)
     assert three.max() == 3
     # Attributes set one by one are the keywords.
-    a = pcl_ncut_seg.segment(points, segments=4, crease_split=0.5, min_segment_fraction=0.1)
+    a = pcl_ncut_seg.segment(points, segments=4, crease_split=0.5, boundary_band=0.1)
     seg = pcl_ncut_seg.Segmenter()
-    seg.segments, seg.crease_split, seg.min_segment_fraction = 4, 0.5, 0.1
+    seg.segments, seg.crease_split, seg.boundary_band = 4, 0.5, 0.1
     assert np.array_equal(seg.segment(points), a)
     # None, False and the off word are the same.
     c = pcl_ncut_seg.segment(points, boundary_band=None, normalize_width=False)

@@ -11,12 +11,12 @@ TABLE = pcl_ncut_seg.parameter_table()
 OTHER = {
     "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "single_view": False, "centrality_samples": 30, "centrality": "exact",
     "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
-    "height_fraction": 0.02, "crease_split": None, "crease_cut": 0.5, "cad": True,
+    "height_fraction": 0.02, "crease_split": None, "cad": True,
     "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
     "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
-    "face_angle": 20.0, "stopping": "largest_gap", "threshold": 0.2, "segments": 3,
-    "splits": 50, "min_segment_fraction": 0.1, "max_segments": 4, "gap_floor": 0.01,
+    "face_angle": 20.0, "stopping": "threshold", "threshold": 0.2, "segments": 3,
+    "splits": 50, "max_segments": 4,
     "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
     "threads": 1,
 }
@@ -40,7 +40,7 @@ def test_every_parameter_is_an_attribute_of_its_name():
     assert seg.k == 10 and isinstance(seg.k, int)
     assert seg.threshold == 0.1 and isinstance(seg.threshold, float)
     assert seg.crossing_fraction == 0.3  # a float field, read back as the same decimal
-    assert seg.crease_cut is None and seg.centrality_samples is None
+    assert seg.centrality_samples is None
     assert seg.cad is False and seg.centrality == "fast"
 
 
@@ -60,7 +60,7 @@ def test_setting_each_parameter_by_attribute_and_keyword():
 
 
 def test_parameters_given_back_as_keywords_set_the_same():
-    for keywords in ({}, {"paper": True}, {"segments": 4}, {"stopping": "largest_gap"},
+    for keywords in ({}, {"paper": True}, {"segments": 4}, {"stopping": "threshold"},
                      {"segments": 4, "stopping": "threshold"},
                      {"paper": True, "segments": 3, "threshold": 0.3}, dict(OTHER, cad=False)):
         seg = pcl_ncut_seg.Segmenter(**keywords)

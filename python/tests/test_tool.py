@@ -30,7 +30,7 @@ CASES = [
     ({}, []),
     ({"k": 12, "segments": 3}, ["-k", "12", "-segments", "3"]),
     ({"paper": True, "threshold": 0.05}, ["-paper", "-threshold", "0.05"]),
-    ({"crease_cut": 0.5, "boundary_crease": 1}, ["-crease_cut", "0.5", "-boundary_crease", "1"]),
+    ({"crease_split": 0.5, "boundary_crease": 1}, ["-crease_split", "0.5", "-boundary_crease", "1"]),
 ]
 
 
@@ -45,7 +45,7 @@ def cloud(tmp_path_factory):
 
 
 @pytest.mark.parametrize("keywords,flags", CASES, ids=["defaults", "k12_segments3", "paper",
-                                                      "crease_cut"])
+                                                      "crease_split"])
 def test_same_labels_as_the_tool(tmp_path, cloud, keywords, flags):
     points, bad, path = cloud
     expected = tool_labels(tmp_path, path, flags)["label"].astype(np.int32)

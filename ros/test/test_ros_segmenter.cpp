@@ -89,7 +89,7 @@ TEST(RosValues, NumbersBooleansAndOff) {
   EXPECT_EQ(text("centrality_samples", Value::ofText("auto")), "auto");
   EXPECT_EQ(text("centrality_samples", Value::ofBoolean(false)), "auto");
   EXPECT_EQ(text("centrality_samples", Value::ofInteger(0)), "0");
-  EXPECT_EQ(text("crease_cut", Value::ofReal(0.0)), "0");
+  EXPECT_EQ(text("crease_split", Value::ofReal(0.0)), "0");
   EXPECT_EQ(text("cad", Value::ofBoolean(true)), "on");
   EXPECT_EQ(text("normalize_width", Value::ofBoolean(false)), "off");
   EXPECT_EQ(text("stopping", Value::ofText("count")), "count");

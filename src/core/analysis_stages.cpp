@@ -120,7 +120,6 @@ void creaseStage(Analysis& a, const float* xyz, const SurfaceBends& bends,
   CreaseSplitParams crease;
   crease.typical_bend = bends.typical_bend;
   crease.min_concavity = params.refinement.crease_split.value_or(0.0);
-  crease.cut_concavity = params.refinement.crease_cut.value_or(0.0);
   crease.area_fraction = params.refinement.area_fraction;
   crease.num_threads = params.execution.num_threads;
   std::size_t splits = 0;

@@ -1,14 +1,12 @@
 // Splitting supernodes along concave creases (an extension of Sec. 4.3; see crease_split.h).
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/crease_split.h>
-#include <pcl_ncut_seg/core/flow_network.h>
 #include <pcl_ncut_seg/core/prefetch.h>
 #include <pcl_ncut_seg/core/radix_sort.h>
 #include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/threads.h>
 
 #include <algorithm>
-#include <cmath>
 #include <deque>
 
 namespace pcl_ncut_seg {
@@ -42,13 +40,6 @@ struct LevelCut {
   std::size_t end = 0;
 };
 
-/// The minimum crease cut through a supernode: its score (-1 when there is none) and its source
-/// side, the top, in descending f.
-struct CreaseCut {
-  double score = -1.0;
-  std::vector<std::uint32_t> top;
-};
-
 /// splitAtCreases() in steps over its state: the supernodes as they are split, each one's
 /// points in descending f, and the cuts found for them.
 struct CreaseSplitter {
@@ -58,18 +49,13 @@ struct CreaseSplitter {
   const std::vector<float>& f;
   const std::vector<float>& radii;
   const CreaseSplitParams& params;
-  const bool level_cuts, crease_cuts;
   const double typical;  ///< the mean |bend|: the unit of concavity
   const double min_area; ///< each side of a split keeps this much (Sec. 4.3's small area)
   Supernodes sn;
   std::vector<std::vector<std::uint32_t>> points; ///< per supernode, in descending f
-  std::vector<char> in_top; ///< per point: in the top of the level cut being swept
-  /// Per point: its node in the crease cut's network, a seed (kTopSeed, kBottomSeed), or -1.
-  std::vector<std::int32_t> local;
-  static constexpr std::int32_t kTopSeed = -2, kBottomSeed = -3;
+  std::vector<char> in_top;        ///< per point: in the top of the level cut being swept
   std::vector<LevelCut> level;     ///< per supernode, its last sweep's level cut
-  std::vector<CreaseCut> crease;   ///< per supernode, its last sweep's crease cut
-  std::vector<char> fresh;         ///< per supernode: level and crease are of its current points
+  std::vector<char> fresh;         ///< per supernode: level is of its current points
   std::deque<std::uint32_t> queue; ///< the supernodes to test
   std::size_t splits = 0;
 
@@ -77,10 +63,8 @@ struct CreaseSplitter {
                  const std::vector<float>& f, const std::vector<float>& radii,
                  const Supernodes& input, const CreaseSplitParams& params, double typical)
       : graph(graph), xyz(xyz), normals(normals), f(f), radii(radii), params(params),
-        level_cuts(params.min_concavity > 0.0), crease_cuts(params.cut_concavity > 0.0),
         typical(typical), min_area(params.area_fraction * totalArea(radii, graph.numVertices())),
-        sn(input), points(pointsByF(input, f)), in_top(graph.numVertices(), 0),
-        local(crease_cuts ? graph.numVertices() : 0, -1), level(input.size()), crease(input.size()),
+        sn(input), points(pointsByF(input, f)), in_top(graph.numVertices(), 0), level(input.size()),
         fresh(input.size(), 0) {
     for (std::uint32_t s = 0; s < sn.size(); ++s)
       queue.push_back(s);
@@ -159,108 +143,6 @@ struct CreaseSplitter {
     return best;
   }
 
-  /// A crease cut's seeds in pts (descending f): the highest points up to `seed` of area end at
-  /// top_end, the lowest likewise begin at bottom_begin.
-  void seeds(const std::vector<std::uint32_t>& pts, double seed, std::size_t& top_end,
-             std::size_t& bottom_begin) const {
-    top_end = 0;
-    bottom_begin = pts.size();
-    for (double a = 0.0; top_end < pts.size() && a < seed; ++top_end)
-      a += pointArea(radii[pts[top_end]]);
-    for (double a = 0.0; bottom_begin > 0 && a < seed; --bottom_begin)
-      a += pointArea(radii[pts[bottom_begin - 1]]);
-  }
-
-  /// The capacity of edge e from p in the crease cut: its length, lowered across concave bends.
-  double capacity(std::uint32_t p, std::uint32_t e) const {
-    return static_cast<double>(graph.lengths[e]) *
-           std::exp(-params.cut_crease_weight * concave(p, e));
-  }
-
-  /// The crease cut's network: the m points of s between the seeds (from top_end in pts; local
-  /// holds their nodes), the source m (the top seed) and the sink m + 1 (the bottom seed).
-  FlowNetwork cutNetwork(std::uint32_t s, std::size_t top_end, std::uint32_t m) const {
-    const std::vector<std::uint32_t>& pts = points[s];
-    FlowNetwork net;
-    net.reset(m);
-    for (std::uint32_t i = 0; i < m; ++i) {
-      const std::uint32_t p = pts[top_end + i];
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        if (q == p || sn.label[q] != s)
-          continue;
-        if (local[q] >= 0)
-          ++net.first[i + 1];
-        else if (local[q] == kTopSeed)
-          net.to_source[i] += capacity(p, e);
-        else
-          net.to_sink[i] += capacity(p, e);
-      }
-    }
-    net.allocateArcs();
-    for (std::uint32_t i = 0; i < m; ++i) {
-      const std::uint32_t p = pts[top_end + i];
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        if (q > p && sn.label[q] == s && local[q] >= 0) {
-          const double c = capacity(p, e);
-          net.addPair(i, static_cast<std::uint32_t>(local[q]), c, c);
-        }
-      }
-      net.addTerminalArcs(i);
-    }
-    return net;
-  }
-
-  /// The top of s's cut (the top seed and the source side of the network, in descending f) and
-  /// the cut's score: the share of the kNN edges inside s it crosses whose concave bend is at
-  /// least cut_min_bend (a crease all along the cut, rather than a few deep folds).
-  CreaseCut scoreCut(std::uint32_t s, const std::vector<char>& source_side) const {
-    auto onTop = [&](std::uint32_t q) {
-      return local[q] == kTopSeed || (local[q] >= 0 && source_side[local[q]]);
-    };
-    CreaseCut cut;
-    std::size_t concave_count = 0, count = 0;
-    for (std::uint32_t p : points[s]) {
-      if (!onTop(p))
-        continue;
-      cut.top.push_back(p);
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        if (q != p && sn.label[q] == s && !onTop(q)) {
-          concave_count += concave(p, e) >= params.cut_min_bend ? 1 : 0;
-          ++count;
-        }
-      }
-    }
-    if (count > 0)
-      cut.score = static_cast<double>(concave_count) / static_cast<double>(count);
-    return cut;
-  }
-
-  /// The minimum crease cut through s between its top and its bottom seeds (crease cuts).
-  /// Reads and writes only s's entries of `local`, so supernodes can be cut in parallel.
-  CreaseCut creaseCut(std::uint32_t s) {
-    const std::vector<std::uint32_t>& pts = points[s];
-    const double area = this->area(s);
-    if (area < 2.0 * min_area)
-      return {};
-    std::size_t top_end, bottom_begin;
-    seeds(pts, std::max(min_area, params.cut_seed_fraction * area), top_end, bottom_begin);
-    if (top_end >= bottom_begin)
-      return {};
-    const auto m = static_cast<std::uint32_t>(bottom_begin - top_end);
-    for (std::size_t i = 0; i < pts.size(); ++i)
-      local[pts[i]] = i < top_end         ? kTopSeed
-                      : i >= bottom_begin ? kBottomSeed
-                                          : static_cast<std::int32_t>(i - top_end);
-    FlowNetwork net = cutNetwork(s, top_end, m);
-    CreaseCut cut = scoreCut(s, net.sourceSide(m, m + 1));
-    for (std::uint32_t p : pts)
-      local[p] = -1;
-    return cut;
-  }
-
   /// The cuts of every queued supernode whose points changed since its last cut (all at
   /// first), in parallel, biggest first. A cut depends only on its supernode's points, and one
   /// whose points change later is cut again, so the result does not depend on the threads.
@@ -278,33 +160,19 @@ struct CreaseSplitter {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(usableThreads(params.num_threads))
     for (std::ptrdiff_t k = 0; k < num_ahead; ++k) {
       const std::uint32_t t = ahead[k];
-      level[t] = level_cuts ? levelCut(t) : LevelCut{};
-      crease[t] = {};
-      if (crease_cuts && !(level_cuts && level[t].concavity >= params.min_concavity))
-        crease[t] = creaseCut(t);
+      level[t] = levelCut(t);
     }
   }
 
-  /// The top and the bottom (each in descending f) of the cut that splits s: its level cut if
-  /// that qualifies, else its crease cut; false when neither does.
+  /// The top and the bottom (each in descending f) of the level cut that splits s; false when
+  /// it does not qualify.
   bool cutAt(std::uint32_t s, std::vector<std::uint32_t>& top, std::vector<std::uint32_t>& bottom) {
-    const std::vector<std::uint32_t>& pts = points[s];
-    if (level_cuts && level[s].concavity >= params.min_concavity) {
-      const auto end = static_cast<std::ptrdiff_t>(level[s].end);
-      top.assign(pts.begin(), pts.begin() + end);
-      bottom.assign(pts.begin() + end, pts.end());
-      return true;
-    }
-    if (!(crease_cuts && crease[s].score >= params.cut_concavity))
+    if (!(level[s].concavity >= params.min_concavity))
       return false;
-    top = std::move(crease[s].top);
-    std::size_t t = 0;
-    for (std::uint32_t p : pts) {
-      if (t < top.size() && top[t] == p)
-        ++t;
-      else
-        bottom.push_back(p);
-    }
+    const std::vector<std::uint32_t>& pts = points[s];
+    const auto end = static_cast<std::ptrdiff_t>(level[s].end);
+    top.assign(pts.begin(), pts.begin() + end);
+    bottom.assign(pts.begin() + end, pts.end());
     return true;
   }
 
@@ -371,7 +239,6 @@ struct CreaseSplitter {
     ++splits;
     fresh.push_back(0);
     level.emplace_back();
-    crease.emplace_back();
     sn.origin.push_back(sn.origin[s]);
     sn.at_saddle.push_back(sn.at_saddle[s]);
     sn.parent.push_back(s);
@@ -415,9 +282,7 @@ Supernodes splitAtCreases(const CsrGraph& graph, const float* xyz,
                           const CreaseSplitParams& params, std::size_t* num_splits) {
   if (num_splits)
     *num_splits = 0;
-  const bool level_cuts = params.min_concavity > 0.0;
-  const bool crease_cuts = params.cut_concavity > 0.0;
-  if ((!level_cuts && !crease_cuts) || graph.numVertices() == 0 || input.size() == 0)
+  if (!(params.min_concavity > 0.0) || graph.numVertices() == 0 || input.size() == 0)
     return input;
   const double typical = params.typical_bend > 0.0
                              ? params.typical_bend

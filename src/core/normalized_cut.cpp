@@ -274,8 +274,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
 
   // Best splits first: the leaf whose bisection has the lowest NCut (at most `cap`).
   std::vector<double> worth; // short-cut rule: per node, its split's worth
-  auto bestFirst = [&](int max_leaves, double cap, std::vector<double>* ncuts,
-                       std::vector<double>* necks = nullptr) {
+  auto bestFirst = [&](int max_leaves, double cap, bool weigh) {
     for (int leaves = 1; leaves < max_leaves; ++leaves) {
       int best = -1;
       for (std::size_t i = 0; i < h.nodes.size(); ++i)
@@ -284,68 +283,27 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
           best = static_cast<int>(i);
       if (best < 0 || h.nodes[best].ncut > cap)
         break;
-      if (ncuts)
-        ncuts->push_back(h.nodes[best].ncut);
-      if (necks) {
-        necks->push_back(split_neck(splits[best].v1, splits[best].v2));
+      if (weigh) {
+        const double neck = split_neck ? split_neck(splits[best].v1, splits[best].v2) : 0.0;
         worth.resize(h.nodes.size(), 0.0);
-        worth[best] = splitWorth(h.nodes[best].ncut, necks->back(), params.neck_exponent,
-                                 params.neck_bound, kNeckFloor);
+        worth[best] = splitWorth(h.nodes[best].ncut, neck, params.neck_exponent, params.neck_bound,
+                                 kNeckFloor);
       }
       split(best);
     }
   };
   if (params.rule == StoppingRule::Count) {
-    bestFirst(params.segments, std::numeric_limits<double>::infinity(), nullptr);
-  } else if (params.rule == StoppingRule::LargestGap || params.rule == StoppingRule::ShortCut) {
-    std::vector<double> ncuts, necks;
-    const bool short_cut = params.rule == StoppingRule::ShortCut && split_neck;
-    bestFirst(std::max(params.max_segments, 1), params.threshold, &ncuts,
-              short_cut ? &necks : nullptr);
-    if (short_cut) // the short-cut rule instead of the largest jump (core/short_cut.h)
-      return keptSplits(h, worth);
-    // Keep the first j splits, j >= 1, where the next split costs the most more than the
-    // dearest kept one (log scale; NCuts below kFloor, e.g. separate components, count as
-    // kFloor). The threshold stands for the split after the last one.
-    const double kFloor = std::max(params.gap_floor, 1e-300);
-    std::size_t keep = 0;
-    double best_gap = -std::numeric_limits<double>::infinity(), level = 0.0;
-    for (std::size_t j = 1; j <= ncuts.size(); ++j) {
-      level = std::max(level, ncuts[j - 1]);
-      const double next = j < ncuts.size() ? ncuts[j] : params.threshold;
-      const double gap = std::log(std::max(next, kFloor)) - std::log(std::max(level, kFloor));
-      if (gap > best_gap) {
-        best_gap = gap;
-        keep = j;
-      }
-    }
-    if (keep < ncuts.size()) {
-      // Rebuild with exactly `keep` splits: the best-first order is deterministic.
-      std::vector<std::uint32_t> root = std::move(h.nodes[0].vertices);
-      h.nodes.clear();
-      splits.clear();
-      add(std::move(root), -1);
-      bestFirst(static_cast<int>(keep) + 1, params.threshold, nullptr);
-    }
+    bestFirst(params.segments, std::numeric_limits<double>::infinity(), false);
+  } else if (params.rule == StoppingRule::ShortCut) {
+    bestFirst(std::max(params.max_segments, 1), params.threshold, true);
+    return keptSplits(h, worth); // core/short_cut.h
   } else {
     // Recursive bisection until NCut exceeds the threshold.
-    const double min_fraction = params.min_segment_fraction.value_or(0.0);
-    const bool use_mass = min_fraction > 0.0 && graph.mass.size() == graph.num_vertices;
-    auto mass = [&](const std::vector<std::uint32_t>& vertices) {
-      double m = 0.0;
-      for (std::uint32_t v : vertices)
-        m += graph.mass[v];
-      return m;
-    };
-    const double min_mass = use_mass ? min_fraction * mass(h.nodes[0].vertices) : 0.0;
     std::vector<int> stack{0};
     while (!stack.empty()) {
       const int i = stack.back();
       stack.pop_back();
       if (!h.nodes[i].has_split || h.nodes[i].ncut > params.threshold)
-        continue;
-      // A split that would leave a side below the minimum mass is refused (the part stays).
-      if (use_mass && std::min(mass(splits[i].v1), mass(splits[i].v2)) < min_mass)
         continue;
       split(i);
       stack.push_back(h.nodes[i].right);

@@ -112,13 +112,6 @@ void refinementRows(Rows& t) {
           "least C",
           false),
       above(0), FIELD(refinement.crease_split), "off"));
-  t.push_back(number<double, std::optional<double>>(
-      row("crease_cut", "refinement.crease_cut", S::Refinement, K::Real, "S",
-          "crease cuts: split a supernode that no level cut splits along its minimum cut "
-          "weighted by concave bend when a share of at least S of the edges it crosses are "
-          "concave",
-          false),
-      leftOpen(0, 1), FIELD(refinement.crease_cut), "off"));
 }
 
 /// CAD (Sec. 7)
@@ -205,11 +198,10 @@ void similarityRows(Rows& t) {
 void stoppingRows(Rows& t) {
   t.push_back(choice<StoppingRule>(
       row("stopping", "stopping.rule", S::Stopping, K::Choice, "RULE",
-          "threshold: bisect while the best NCut <= -threshold (the paper); largest_gap: "
-          "best-first splits up to the largest jump in NCut; short_cut: best-first splits "
-          "across short boundaries; count: -segments parts",
+          "threshold: bisect while the best NCut <= -threshold (the paper); short_cut: "
+          "best-first splits across short boundaries; count: -segments parts",
           false),
-      {"threshold", "largest_gap", "short_cut", "count"}, FIELD(stopping.rule)));
+      {"threshold", "short_cut", "count"}, FIELD(stopping.rule)));
   t.push_back(number<double, double>(
       row("threshold", "stopping.threshold", S::Stopping, K::Real, "T",
           "normalized-cut threshold (Sec. 5.2): no part is split at a higher NCut", true),
@@ -235,19 +227,9 @@ void stoppingRows(Rows& t) {
       number<int, int>(row("splits", "stopping.num_splits", S::Stopping, K::Integer, "N",
                            "uniform split values tried on each eigenvector (Sec. 5.2)", true),
                        atLeast(1), FIELD(stopping.num_splits)));
-  t.push_back(number<double, std::optional<double>>(
-      row("min_segment_fraction", "stopping.min_segment_fraction", S::Stopping, K::Real, "F",
-          "threshold rule: a part is bisected only if each side keeps this fraction of the "
-          "feature area",
-          false),
-      leftOpen(0, 0.5), FIELD(stopping.min_segment_fraction), "off"));
   t.push_back(number<int, int>(row("max_segments", "stopping.max_segments", S::Stopping, K::Integer,
-                                   "N", "largest_gap, short_cut: at most N segments", false),
+                                   "N", "short_cut: at most N segments", false),
                                atLeast(1), FIELD(stopping.max_segments)));
-  t.push_back(
-      number<double, double>(row("gap_floor", "stopping.gap_floor", S::Stopping, K::Real, "F",
-                                 "largest_gap, short_cut: NCut values below F count as F", false),
-                             above(0), FIELD(stopping.gap_floor)));
   t.push_back(number<double, double>(
       row("neck_exponent", "stopping.neck_exponent", S::Stopping, K::Real, "W",
           "short_cut: a split's NCut is weighted by neck^W, neck = its boundary's length over "

@@ -37,13 +37,11 @@ Parameters Parameters::paper() {
   p.centrality.mode = CentralityMode::Exact;
   p.centrality.starts = 1;
   p.refinement.crease_split.reset();
-  p.refinement.crease_cut.reset();
   p.similarity.normalize_width = false;
   p.similarity.adjacency = Adjacency::Saddles;
   p.similarity.concavity.reset();
   p.similarity.flat_elongation.reset();
   p.stopping.rule = StoppingRule::Threshold;
-  p.stopping.min_segment_fraction.reset();
   p.boundary.band.reset();
   p.boundary.rim_merge.reset();
   return p;

@@ -31,11 +31,6 @@ bool serves(const Analysis& analysis, const Parameters& params) {
 }
 
 namespace {
-/// Crease splits or cuts asked for.
-bool splitsCreases(const Parameters& params) {
-  return params.refinement.crease_split || params.refinement.crease_cut;
-}
-
 /// The starts whose samples no earlier start has, and per such start how many starts have
 /// its samples (the same samples give the same f, hence the same analysis).
 struct DistinctStarts {
@@ -104,7 +99,7 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
       progress("LRef", share(i + 1));
   }
   const CutNeeds needs = cutNeeds(params);
-  const bool creases = splitsCreases(params);
+  const bool creases = params.refinement.crease_split.has_value();
   if (creases || needs.concavity || needs.crease || needs.rim) {
     // Measured between the supernodes, like eq. (8): their time counts as refinement time.
     Stopwatch clock;
@@ -159,8 +154,8 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   std::vector<std::uint32_t> component;
   connectedComponents(graph, component);
   const std::vector<std::uint32_t> rank = centralRanks(points.xyz.data(), n, component);
-  const bool keep_xyz =
-      params.cad.enabled || needs.concavity || needs.crease || needs.rim || splitsCreases(params);
+  const bool keep_xyz = params.cad.enabled || needs.concavity || needs.crease || needs.rim ||
+                        params.refinement.crease_split.has_value();
   if (!keep_xyz)
     std::vector<float>().swap(points.xyz);
   times.knn += clock.lap();

@@ -138,10 +138,6 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   for (std::uint32_t s = 0; s < l; ++s)
     flat[s] = stats.height[s] < flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
 
-  g.mass.assign(2 * l, 0.0);
-  for (std::uint32_t s = 0; s < l; ++s)
-    g.mass[l + s] = stats.area[s];
-
   // eq. (7): r_i - m_i
   for (std::uint32_t i = 0; i < l; ++i) {
     const double self = max_self[root[i]];

@@ -11,8 +11,8 @@
  *   - a second extract() after changing only cut parameters (the cheap path) is a partition too;
  *   - the same labels with another number of threads.
  * The (up to two) bytes after the points choose the options beyond the paper (bridging, concave
- * creases, flat patches, largest-gap stopping, joining touching supernodes, exact centrality,
- * CAD mode), flags 0x08 and 0x80 the short-cut rule's, the samples byte's high bits the
+ * creases, flat patches, the threshold rule, the segment cap, joining touching supernodes,
+ * exact centrality, CAD mode), flag 0x80 the short-cut rule's, the samples byte's high bits the
  * boundary refinement's and the crease splits'; zeros, as in most of the corpus, keep the
  * defaults.
  * Built with libFuzzer by -DPCL_NCUT_SEG_BUILD_FUZZERS=ON (clang); replay_main.cpp runs a
@@ -184,7 +184,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     using Off = std::optional<double>;
     static const Off kRadii[] = {0, Off(), 0.5, 1e3}, kWeight[] = {0, Off(), 0.01, 1e3},
                      kElongation[] = {0, Off(), 1e-3, 10};
-    static const double kFloor[] = {0, 1e-300, 0.5, 1e300}, kShare[] = {0, 0, 1, 0};
+    static const double kShare[] = {0, 0, 1, 0};
     static const int kMaxSegments[] = {0, 1, 2, INT_MAX};
     if (options1 & 3)
       seg.setBridgeGap(kRadii[options1 & 3]);
@@ -198,15 +198,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setCadMode(true);
     if (options2 & 3)
       seg.setMaxSegments(kMaxSegments[options2 & 3]);
-    if ((options2 >> 2) & 3)
-      seg.setGapFloor(kFloor[(options2 >> 2) & 3]);
     if (((options2 >> 4) & 3) == 3) {
       if (seg.getAdjacency() == pcl_ncut_seg::Adjacency::All)
         seg.setAdjacency(pcl_ncut_seg::Adjacency::Trees);
     } else if ((options2 >> 4) & 3)
       seg.setAdjacentShare(kShare[(options2 >> 4) & 3]);
-    if (options2 & 0x40)
-      seg.setMinSegmentFraction(0.25);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
     static const Off kBand[] = {0, Off(), 0.5, 1e-3}, kCreaseSplit[] = {0, Off(), 1e-6, 1e3};
@@ -216,14 +212,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       seg.setBoundaryCreaseWeight(1e3);
     if ((later_options >> 3) & 3)
       seg.setCreaseSplit(kCreaseSplit[(later_options >> 3) & 3]);
-    // The short-cut stopping rule: flag 0x08 takes the largest-gap rule instead, 0x80 the
-    // short-cut rule at its extremes.
-    using pcl_ncut_seg::StoppingRule;
-    if ((flags & 0x08) && seg.getStoppingRule() == StoppingRule::ShortCut)
-      seg.setStoppingRule(StoppingRule::LargestGap);
+    // The short-cut stopping rule at its extremes.
     if (flags & 0x80) {
-      if (seg.getStoppingRule() == StoppingRule::LargestGap)
-        seg.setStoppingRule(StoppingRule::ShortCut);
       seg.setNeckExponent(1e3);
       seg.setNeckBound(1e300);
     }

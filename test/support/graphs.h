@@ -85,12 +85,10 @@ inline double edgeWeight(const WeightedGraph& g, std::uint32_t a, std::uint32_t 
   return -1;
 }
 
-/// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1, the given
-/// member-member edges (member indices 0..l-1), and, if given, the members' masses (the
-/// representatives' are 0).
+/// Members m_0..m_{l-1} (vertices l..2l-1) with representative edges of weight 1 and the given
+/// member-member edges (member indices 0..l-1).
 inline WeightedGraph memberGraph(std::size_t l,
-                                 const std::vector<WeightedGraph::Edge>& member_edges,
-                                 const std::vector<double>& member_mass = {}) {
+                                 const std::vector<WeightedGraph::Edge>& member_edges) {
   const auto member = [l](std::uint32_t s) { return static_cast<std::uint32_t>(l + s); };
   WeightedGraph g;
   g.num_vertices = 2 * l;
@@ -98,11 +96,6 @@ inline WeightedGraph memberGraph(std::size_t l,
     g.edges.push_back({i, member(i), 1.0});
   for (const auto& e : member_edges)
     g.edges.push_back({member(e.a), member(e.b), e.w});
-  if (!member_mass.empty()) {
-    g.mass.assign(2 * l, 0.0);
-    for (std::size_t i = 0; i < l; ++i)
-      g.mass[l + i] = member_mass[i];
-  }
   return g;
 }
 

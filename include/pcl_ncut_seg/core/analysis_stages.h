@@ -55,7 +55,7 @@ SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_
                           const float* viewpoint = nullptr);
 
 /** \brief Crease stage (extension): split refined supernodes along concave creases
- * (refinement.crease_split, .crease_cut; core/crease_split.h), then measure their features
+ * (refinement.crease_split; core/crease_split.h), then measure their features
  * and eq. (8) again. */
 void creaseStage(Analysis& analysis, const float* xyz, const SurfaceBends& bends,
                  const Parameters& params);

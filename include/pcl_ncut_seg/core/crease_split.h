@@ -27,20 +27,6 @@ struct CreaseSplitParams {
   unsigned num_threads = 0;
   /// meanAbsBend() of the graph, when the caller has it already; 0: computed here.
   double typical_bend = 0.0;
-  /// Crease cuts: when no level cut reaches min_concavity, a supernode is also split along the
-  /// minimum cut between its top and its bottom (each cut_seed_fraction of its area, by f) over
-  /// its kNN edges, an edge costing its length times exp(-cut_crease_weight c), c its concave
-  /// bend (in units of the mean |bend|, as above); the cut splits the supernode when at least
-  /// this share of the kNN edges it crosses have c >= cut_min_bend. Such a cut can follow a
-  /// crease that slants across the level sets of f (a shoulder, the base of a digit).
-  /// In [0, 1]; 0 = off (level cuts only).
-  double cut_concavity = 0.0;
-  /// See cut_concavity; > 0.
-  double cut_min_bend = 0.75;
-  /// See cut_concavity; in (0, 0.5).
-  double cut_seed_fraction = 0.2;
-  /// See cut_concavity; >= 0 (the boundary refinement's crease weight).
-  double cut_crease_weight = 3.0;
 };
 
 /** \brief Split refined supernodes along concave creases.
@@ -56,9 +42,6 @@ struct CreaseSplitParams {
  *    as the local refinement merges a small saddle supernode up;
  *  - any other supernode keeps its bottom, and its top becomes a supernode that terminates at
  *    the bottom's highest point (the bottom then counts as created at a saddle).
- * With crease cuts on (cut_concavity > 0), a supernode no level cut splits is tested with its
- * minimum crease cut instead (scored by the share of its edges that are concave), and split the
- * same way (its source side is the top).
  * Both remaining pieces are tested again, until no cut qualifies. Output ids are compact and
  * numbered in order of the first point (by index) of each supernode, as refineSupernodes().
  * \param[in] xyz      3 floats per vertex

@@ -1,6 +1,6 @@
 /*
- * pcl_ncut_seg: a minimum s-t cut of a small network in CSR form, shared by the boundary
- * refinement (core/boundary_refinement.h) and the crease cuts (core/crease_split.h).
+ * pcl_ncut_seg: a minimum s-t cut of a small network in CSR form, for the boundary refinement
+ * (core/boundary_refinement.h).
  */
 #pragma once
 

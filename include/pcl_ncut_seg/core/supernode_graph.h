@@ -32,9 +32,6 @@ struct WeightedGraph {
     double w;
   };
   std::vector<Edge> edges;
-  /// Optional mass of each vertex (empty: none): the feature area f_a of a member vertex's
-  /// supernode, 0 for representative vertices. Used by CutParams::min_segment_fraction.
-  std::vector<double> mass;
 };
 
 /** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created
