@@ -116,6 +116,12 @@ def build():
         return "unknown"
 
 
+def run_build(out, config, folder):
+    """The build a run was made with, as report.sh recorded it."""
+    path = os.path.join(out, config, folder, "build")
+    return f"  # build {open(path).read().strip()}" if os.path.exists(path) else ""
+
+
 def header(out, configs, md):
     md.append("# Every kind of input, every stage\n")
     md.append(f"Written by `scripts/report.py` on {datetime.date.today()} from the runs in "
@@ -125,7 +131,7 @@ def header(out, configs, md):
         for folder in sorted({f for f, _, _ in INPUTS}):
             path = os.path.join(out, config, folder, "command")
             if os.path.exists(path):
-                md.append(open(path).read().strip())
+                md.append(open(path).read().strip() + run_build(out, config, folder))
     md.append("```\n")
     md.append("Figures are means over models (each model's draws and views averaged first); "
               "`a / b` gives the two halves of the dev split, models base+1..3 / base+4..6 of "
@@ -231,7 +237,11 @@ def ablation(runs, ids_by, configs, md, abl_dir):
     if not offs:
         return
     md.append("## What each stage buys\n")
-    md.append(f"From the runs in `{abl_dir}` (their commands are in each run's folder): "
+    builds = sorted({open(os.path.join(abl_dir, c, f, "build")).read().strip()
+                     for c in configs for f, _, _ in INPUTS
+                     if os.path.exists(os.path.join(abl_dir, c, f, "build"))})
+    md.append(f"From the runs in `{abl_dir}` (build {', '.join(builds) or 'unknown'}; their "
+              "commands are in each run's folder): "
               "fewer draws and views than the tables above, each stage off against the "
               "defaults on the same points. A stage pays on an input when turning it off makes "
               f"both halves worse by at least {NOISE} in 1 - RI or Hamming and neither better by "

@@ -83,6 +83,7 @@ for input in $INPUTS; do
   mkdir -p "$dir"
   # shellcheck disable=SC2086  # the input's flags are words
   echo "$EVAL $DATA $dir -quiet ${METHODS[*]} $input_flags $*" >"$dir/command"
+  git -C "$ROOT" describe --always --dirty >"$dir/build" 2>/dev/null || echo unknown >"$dir/build"
   rm -f "$dir/models.csv"
   "$EVAL" "$DATA" "$dir" -quiet "${METHODS[@]}" $input_flags "$@" >"$dir/log" 2>&1 &
   running=$((running + 1))
