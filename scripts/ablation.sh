@@ -35,14 +35,11 @@ declare -A OFF=(
   [short_cut]="-stopping threshold"
   [boundary_band]="-boundary_band off"
   [rim_merge]="-rim_merge off"
-  [view_small_segment]="-view_small_segment off"
-  [organized_rim]="-organized_rim off"
   [single_view]="-single_view off"
 )
-declare -A ON_VIEWS_ONLY=([rim_merge]=1 [view_small_segment]=1 [organized_rim]=1 [single_view]=1)
+declare -A ON_VIEWS_ONLY=([rim_merge]=1 [single_view]=1)
 ORDER="bridge_gap denoise irregular_sampling starts crease_split normalize_width
-adjacency concavity flat_elongation short_cut boundary_band rim_merge view_small_segment
-organized_rim single_view"
+adjacency concavity flat_elongation short_cut boundary_band rim_merge single_view"
 
 stages=("$@")
 [ "${#stages[@]}" -gt 0 ] || read -r -a stages <<<"$(echo $ORDER)"
