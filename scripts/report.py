@@ -31,6 +31,8 @@ INPUTS = [  # (folder, mode in models.csv, label)
     ("views_unknown_origin", "laser", "view: laser-like, origin unknown"),
 ]
 HALVES = ("1-3", "4-6")
+# Stages that the ablation below led to remove (their runs were made before the removal).
+REMOVED = {"organized_rim", "view_small_segment"}
 # A change smaller than this in a mean over a half (19 x 3 models) is noise.
 NOISE = 0.002
 
@@ -251,7 +253,8 @@ def ablation(runs, ids_by, configs, md, abl_dir):
     md.append("|---|---|---|")
     for off in offs:
         pays, costs = verdict(stage_deltas(runs, ids_by, off))
-        md.append(f"| {off[4:]} | {', '.join(pays) or '—'} | {', '.join(costs) or '—'} |")
+        name = off[4:] + (" (removed)" if off[4:] in REMOVED else "")
+        md.append(f"| {name} | {', '.join(pays) or '—'} | {', '.join(costs) or '—'} |")
     md.append("")
     md.append("### Each stage off, per input\n")
     md.append("Off minus defaults, `1-3 / 4-6`: positive means the stage helps there. (The "
