@@ -270,6 +270,15 @@ def ablation(runs, ids_by, configs, md, abl_dir):
         md.append("")
 
 
+def write_atomically(target, lines):
+    """The lines into target, whole or not at all."""
+    os.makedirs(os.path.dirname(os.path.abspath(target)), exist_ok=True)
+    tmp = target + ".tmp"
+    with open(tmp, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(tmp, target)
+
+
 def main():
     if len(sys.argv) not in (3, 4):
         sys.exit("usage: report.py OUT REPORT.md [ABLATION_OUT]")
@@ -287,11 +296,7 @@ def main():
         abl_configs = sorted({k[0] for k in abl_runs})
         ablation(abl_runs, ids_by, abl_configs, md, sys.argv[3])
     category_tables(runs, categories, md)
-    tmp = target + ".tmp"
-    os.makedirs(os.path.dirname(os.path.abspath(target)), exist_ok=True)
-    with open(tmp, "w") as f:
-        f.write("\n".join(md) + "\n")
-    os.replace(tmp, target)
+    write_atomically(target, md)
     print(f"report.py: wrote {target}")
 
 

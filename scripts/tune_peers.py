@@ -5,6 +5,7 @@ for each (the lowest mean of 1 - RI and Hamming over both halves).
 
     python3 scripts/tune_peers.py OUT results/peers.md
 """
+import csv
 import os
 import re
 import sys
@@ -31,7 +32,6 @@ def main():
             continue
         commands.append(open(os.path.join(out, name, "command")).read().strip()
                         if os.path.exists(os.path.join(out, name, "command")) else name)
-        import csv
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
         per = {}
@@ -70,10 +70,7 @@ def main():
             md.append(f"| {setting} | {report.pair(a[0], b[0])} | {report.pair(a[1], b[1])} | "
                       f"{report.fmt(allm[2], 1)} | {'**yes**' if setting == best else ''} |")
         md.append("")
-    tmp = target + ".tmp"
-    with open(tmp, "w") as f:
-        f.write("\n".join(md) + "\n")
-    os.replace(tmp, target)
+    report.write_atomically(target, md)
     print(f"tune_peers.py: wrote {target}")
 
 
