@@ -25,8 +25,8 @@ using Clock = std::chrono::steady_clock;
 /** One view and what it is scored on: its seen faces, their areas and the people's labels. */
 struct ScoredView {
   DepthView view;
-  std::size_t index = 0;        ///< which view of the model
-  std::vector<float> centroids; ///< the mesh's face centroids (mesh frame)
+  std::size_t index = 0;                         ///< which view of the model
+  const std::vector<float>* centroids = nullptr; ///< the mesh's face centroids (mesh frame)
   std::vector<std::size_t> seen;
   std::vector<double> area;
   std::vector<std::vector<int>> humans;
@@ -76,7 +76,7 @@ struct FormCloud {
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud;
   std::vector<std::size_t> finite;      ///< the cloud's finite points
   std::vector<float> xyz;               ///< their x, y, z
-  std::vector<std::int64_t> point_face; ///< per point of the cloud
+  std::vector<std::int64_t> point_face; ///< per point of the cloud, where by_pixels
   bool by_pixels = true; ///< scored by the pixels' votes (else each face by its nearest point)
 };
 
@@ -116,8 +116,8 @@ double diagonalOf(const std::vector<float>& xyz) {
 
 /** The points drawn uniformly by area on the seen faces, in the view's world frame, with
  * isotropic noise of 0.002 diagonals (a laser scanner's view of the same surface). */
-std::vector<float> laserPoints(const Model& m, const ScoredView& s, std::size_t n, double diagonal,
-                               std::vector<std::int64_t>& face) {
+std::vector<float> laserPoints(const Model& m, const ScoredView& s, std::size_t n,
+                               double diagonal) {
   TriangleMesh seen;
   seen.vertices = m.mesh.vertices;
   seen.num_original_faces = m.mesh.num_original_faces;
@@ -131,12 +131,10 @@ std::vector<float> laserPoints(const Model& m, const ScoredView& s, std::size_t 
       seen.original_face.push_back(m.mesh.original_face[t]);
     }
   const std::uint64_t seed = drawSeed(m.id, static_cast<int>(s.index), 7);
-  std::vector<std::uint32_t> of_sample;
-  std::vector<float> xyz = sampleSurface(seen, n, seed, &of_sample);
+  std::vector<float> xyz = sampleSurface(seen, n, seed);
   for (std::size_t i = 0; i < xyz.size(); ++i)
     xyz[i] = static_cast<float>(s.view.scale * (xyz[i] - s.view.centre[i % 3]));
   addNoise(xyz, 0.002 * diagonal, seed + 1);
-  face.assign(of_sample.begin(), of_sample.end());
   return xyz;
 }
 
@@ -166,21 +164,10 @@ FormCloud makeForm(const Model& m, const ScoredView& s, const std::string& form,
       grid.filter(*out);
       out->sensor_origin_ = f.cloud->sensor_origin_;
       out->sensor_orientation_ = f.cloud->sensor_orientation_;
-      std::vector<float> centres;
-      for (const auto& p : *out)
-        centres.insert(centres.end(), {p.x, p.y, p.z});
-      // Each centre lies on the face of the crop's point nearest to it.
-      std::vector<std::int64_t> face_of;
-      for (const std::uint32_t j : nearestPoints(f.xyz, centres))
-        face_of.push_back(f.point_face[j]);
-      f.point_face = std::move(face_of);
       f.cloud = out;
       f.by_pixels = false;
     } else if (form == "laser") {
-      std::vector<std::int64_t> face;
-      const std::vector<float> xyz = laserPoints(m, s, f.finite.size(), diagonal, face);
-      f.cloud = unorganized(xyz, *f.cloud);
-      f.point_face = std::move(face);
+      f.cloud = unorganized(laserPoints(m, s, f.finite.size(), diagonal), *f.cloud);
       f.by_pixels = false;
     } else {
       f.cloud = unorganized(f.xyz, *f.cloud);
@@ -200,7 +187,7 @@ std::vector<int> faceLabelsOf(const FormCloud& f, const ScoredView& s,
   for (const std::size_t face : s.seen)
     for (int d = 0; d < 3; ++d)
       centroids.push_back(
-          static_cast<float>(s.view.scale * (s.centroids[3 * face + d] - s.view.centre[d])));
+          static_cast<float>(s.view.scale * ((*s.centroids)[3 * face + d] - s.view.centre[d])));
   std::vector<int> finite_labels;
   for (const std::size_t i : f.finite)
     finite_labels.push_back(labels[i]);
@@ -331,7 +318,7 @@ double scoreViews(const Model& m, const Options& opt, Report& report) {
   for (int v = 0; v < opt.views; ++v) {
     ScoredView s = makeView(m, opt, v);
     s.index = static_cast<std::size_t>(v);
-    s.centroids = centroids;
+    s.centroids = &centroids;
     scoreView(m, opt, s, whole, whole_seconds, sums);
   }
   for (const std::string& key : sums.order) {
