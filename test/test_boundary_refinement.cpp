@@ -1,6 +1,6 @@
 /*
  * Boundary refinement after the hierarchy (core/boundary_refinement.h,
- * SupernodeNCutSegmentation::setBoundaryBand, setBoundaryCreaseWeight).
+ * SupernodeNCutSegmentation::setBoundaryBand).
  */
 #include <pcl_ncut_seg/core/boundary_refinement.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
@@ -123,7 +123,6 @@ TEST(BoundaryRefinement, GridBoundaryMovesToTheCrease) {
     label[p] = p % w < 20 ? 0 : 1;
   BoundaryParams params;
   params.band = 0.3; // 6 columns of each side's 20
-  params.crease_weight = 3.0;
   const std::size_t moved = refineBoundaries(graph, radii, crease, params, label, 2);
   EXPECT_EQ(moved, static_cast<std::size_t>(5 * h));
   for (int p = 0; p < w * h; ++p)
@@ -142,7 +141,6 @@ TEST(BoundaryRefinement, GridBandBoundsTheMove) {
     label[p] = p % w < 20 ? 0 : 1;
   BoundaryParams params;
   params.band = 0.3;
-  params.crease_weight = 3.0;
   refineBoundaries(graph, radii, crease, params, label, 2);
   std::size_t in_zero = 0;
   for (int p = 0; p < w * h; ++p)
@@ -283,11 +281,4 @@ TEST(BoundaryRefinement, SettersRejectBadValues) {
   EXPECT_EQ(seg.getBoundaryBand(), 0.25);
   seg.setBoundaryBand(std::nullopt);
   EXPECT_EQ(seg.getBoundaryBand(), std::nullopt);
-  seg.setBoundaryCreaseWeight(5.0);
-  for (double bad :
-       {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
-    seg.setBoundaryCreaseWeight(bad);
-  EXPECT_EQ(seg.getBoundaryCreaseWeight(), 5.0);
-  seg.setBoundaryCreaseWeight(0.0);
-  EXPECT_EQ(seg.getBoundaryCreaseWeight(), 0.0);
 }

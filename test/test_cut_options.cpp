@@ -33,8 +33,9 @@ FeatureStats ringStats() {
   st.width = {1, 1, 1};
   return st;
 }
-Connectivity ringConn() {
-  return {{{0, 0}, 4.0}, {{1, 1}, 4.0}, {{2, 2}, 4.0}, {{0, 1}, 2.0}, {{1, 2}, 2.0}, {{0, 2}, 1.0}};
+/// c02: the contact of s0 and s2, which meet at no saddle.
+Connectivity ringConn(double c02 = 1.0) {
+  return {{{0, 0}, 4.0}, {{1, 1}, 4.0}, {{2, 2}, 4.0}, {{0, 1}, 2.0}, {{1, 2}, 2.0}, {{0, 2}, c02}};
 }
 
 /// Member vertex of supernode s among l supernodes.
@@ -52,19 +53,16 @@ TEST(AdjacencyAll, AddsThePairsThatMeetAtNoSaddle) {
       buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
   EXPECT_EQ(edgeWeight(saddles_only, m(3, 0), m(3, 2)), -1) << "the paper: a tree of saddle edges";
   p.adjacency = Adjacency::All;
-  p.adjacent_share = 0.0;
-  const WeightedGraph all = buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p);
+  // s0 and s2 touch with conn 2 of each one's total contact 4: a share of 1/2, joined.
+  ASSERT_GE(0.5, kAdjacentShare);
+  const WeightedGraph all = buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(2.0), p);
   EXPECT_EQ(all.edges.size(), saddles_only.edges.size() + 1);
-  // eq. (9) with d1 = 0 (equal heights), d2 = 1 - 1/2, alpha = 0.5 (equal widths).
-  EXPECT_NEAR(edgeWeight(all, m(3, 0), m(3, 2)), std::exp(-0.5 / 0.5), 1e-12);
+  // eq. (9) with d1 = 0 (equal heights), d2 = 1 - 2/2 (the component's largest contact).
+  EXPECT_NEAR(edgeWeight(all, m(3, 0), m(3, 2)), 1.0, 1e-12);
   EXPECT_NEAR(edgeWeight(all, m(3, 0), m(3, 1)), edgeWeight(saddles_only, m(3, 0), m(3, 1)), 1e-15);
-  // s0 and s2 touch with conn 1; each has total contact 3: joined up to a share of 1/3.
-  p.adjacent_share = 0.3;
-  EXPECT_GT(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
-                       m(3, 2)),
-            0);
-  p.adjacent_share = 0.5;
-  EXPECT_EQ(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(), p), m(3, 0),
-                       m(3, 2)),
+  // With conn 1 of a total contact 3 (a share of 1/3) they only graze: not joined.
+  ASSERT_LT(1.0 / 3.0, kAdjacentShare);
+  EXPECT_EQ(edgeWeight(buildSupernodeGraph(ringSupernodes(), ringStats(), ringConn(1.0), p),
+                       m(3, 0), m(3, 2)),
             -1);
 }

@@ -175,7 +175,7 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
                                   psb + " " + out + " -crease_split 0",
                                   psb + " " + out + " -crease_split 0.1 -crease_split 0.2",
                                   psb + " " + out + " -creasesplit 0.2",
-                                  psb + " " + out + " -neck_exponent 0",
+                                  psb + " " + out + " -neck_bound 0",
                                   psb + " " + out + " -segments 3 -thresholds 0.1,0.2",
                                   psb + " " + out + " -bogus",
                                   psb + " " + out + " -views 0",
@@ -243,7 +243,7 @@ TEST_F(EvalTool, SamplesDrawsAndWritesTheSpread) {
 TEST_F(EvalTool, TakesTheToolsFlags) {
   const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
                            " -methods ours -modes auto -quiet ";
-  ASSERT_EQ(run(args + "-crease_split 0.5 -neck_exponent 2 -boundary_band 0.1 -bridge_gap 2"), 0)
+  ASSERT_EQ(run(args + "-crease_split 0.5 -neck_bound 0.3 -boundary_band 0.1 -rim_merge 20"), 0)
       << stderrText();
   EXPECT_FALSE(models().empty());
 }

@@ -82,9 +82,6 @@ std::vector<ParamCase> validEdges() {
                    return s.getNumberOfSegments() == n &&
                           s.getStoppingRule() == pcl_ncut_seg::StoppingRule::Count;
                  }});
-  for (int n : {1, INT_MAX})
-    v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
-                 [n](const Seg& s) { return s.getNumberOfSplitValues() == n; }});
   for (unsigned n : {0u, 1u, 64u, UINT_MAX})
     v.push_back({"setNumberOfThreads", [n](Seg& s) { s.setNumberOfThreads(n); },
                  [n](const Seg& s) { return s.getNumberOfThreads() == n; }});
@@ -92,24 +89,8 @@ std::vector<ParamCase> validEdges() {
     v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
                  [n](const Seg& s) { return s.getMaxSegments() == n; }});
   for (double x : {dmin, dmax})
-    v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
-                 [x](const Seg& s) { return s.getNeckExponent() == x; }});
-  for (double x : {dmin, dmax})
     v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
                  [x](const Seg& s) { return s.getNeckBound() == x; }});
-  for (double x : {0.0, 1.0})
-    v.push_back({"setAdjacentShare", [x](Seg& s) { s.setAdjacentShare(x); },
-                 [x](const Seg& s) { return s.getAdjacentShare() == x; }});
-  for (float x : {std::numeric_limits<float>::denorm_min(), 90.0f})
-    v.push_back({"setFaceAngle",
-                 [x](Seg& s) {
-                   s.setCadMode(true);
-                   s.setFaceAngle(x);
-                 },
-                 [x](const Seg& s) { return s.getFaceAngle() == x; }});
-  for (int n : {100, INT_MAX})
-    v.push_back({"setNumberOfRepresentatives", [n](Seg& s) { s.setNumberOfRepresentatives(n); },
-                 [n](const Seg& s) { return s.getNumberOfRepresentatives() == n; }});
   v.push_back(
       {"setCentralityMode",
        [](Seg& s) { s.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact); },
@@ -154,31 +135,11 @@ std::vector<ParamCase> justPast() {
                           s.getStoppingRule() != Seg().getStoppingRule();
                  }});
   for (int n : {0, -1, INT_MIN})
-    v.push_back({"setNumberOfSplitValues", [n](Seg& s) { s.setNumberOfSplitValues(n); },
-                 [](const Seg& s) { return s.getNumberOfSplitValues() != 100; }});
-  for (int n : {0, -1, INT_MIN})
     v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
                  [](const Seg& s) { return s.getMaxSegments() != Seg().getMaxSegments(); }});
   for (double x : {0.0, -dmin, dinf, dnan})
-    v.push_back({"setNeckExponent", [x](Seg& s) { s.setNeckExponent(x); },
-                 [](const Seg& s) {
-                   return s.getNeckExponent() != Seg().getNeckExponent() ||
-                          s.getStoppingRule() != Seg().getStoppingRule();
-                 }});
-  for (double x : {0.0, -dmin, dinf, dnan})
     v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
                  [](const Seg& s) { return s.getNeckBound() != Seg().getNeckBound(); }});
-  for (double x : {-dmin, std::nextafter(1.0, 2.0), dinf, dnan})
-    v.push_back({"setAdjacentShare", [x](Seg& s) { s.setAdjacentShare(x); },
-                 [](const Seg& s) { return s.getAdjacentShare() != Seg().getAdjacentShare(); }});
-  for (float x : {0.0f, -1.0f, std::nextafter(90.0f, 91.0f), kNaN, kInf})
-    v.push_back({"setFaceAngle", [x](Seg& s) { s.setFaceAngle(x); },
-                 [](const Seg& s) { return s.getFaceAngle() != Seg().getFaceAngle(); }});
-  for (int n : {99, 0, -1, INT_MIN})
-    v.push_back({"setNumberOfRepresentatives", [n](Seg& s) { s.setNumberOfRepresentatives(n); },
-                 [](const Seg& s) {
-                   return s.getNumberOfRepresentatives() != Seg().getNumberOfRepresentatives();
-                 }});
   v.push_back({"setCentralityMode",
                [](Seg& s) { s.setCentralityMode(static_cast<pcl_ncut_seg::CentralityMode>(7)); },
                [](const Seg& s) { return s.getCentralityMode() != Seg().getCentralityMode(); }});

@@ -179,8 +179,7 @@ TEST(ParameterTable, OneNamePerParameter) {
 TEST(ParameterTable, ThePaperPresetTurnsEveryExtensionOff) {
   const Parameters paper = Parameters::paper(), defaults;
   for (const ParameterInfo& r : parameterTable()) {
-    if (r.paper || r.stage == Stage::Execution || r.name == "representatives" ||
-        r.name == "segments")
+    if (r.paper || r.stage == Stage::Execution || r.name == "segments")
       continue; // the paper's own parameters keep their values
     const bool off = r.get(paper) == "off" || r.get(paper) == "saddles" ||
                      r.get(paper) == "threshold" || r.get(paper) == "exact" ||

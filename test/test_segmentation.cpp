@@ -190,8 +190,6 @@ TEST(Segmentation, SettersRejectBadValuesAndKeepTheOldOnes) {
   seg.setNumberOfSegments(-2);
   EXPECT_EQ(seg.getNumberOfSegments(), 2);
   EXPECT_EQ(seg.getStoppingRule(), pcl_ncut_seg::StoppingRule::ShortCut) << "not the count rule";
-  seg.setNumberOfSplitValues(0);
-  EXPECT_EQ(seg.getNumberOfSplitValues(), 100);
   // Valid edge values are taken.
   seg.setNumberOfNeighbours(2);
   seg.setCrossingFraction(1.0f);

@@ -1,6 +1,6 @@
 /*
- * The short-cut stopping rule (core/short_cut.h, StoppingParams::neck_exponent,
- * SupernodeNCutSegmentation::setNeckExponent / setNeckBound).
+ * The short-cut stopping rule (core/short_cut.h, StoppingParams::neck_bound,
+ * SupernodeNCutSegmentation::setNeckBound).
  */
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/short_cut.h>
@@ -128,7 +128,6 @@ TEST(ShortCut, WeighsEachSplitOfTheHierarchyByItsNeck) {
   StoppingParams p;
   p.threshold = 2.0;
   p.rule = StoppingRule::ShortCut;
-  p.neck_exponent = 3.0;
   int calls = 0;
   double neck_value = 1.0;
   const SplitNeckFn neck = [&](const std::vector<std::uint32_t>& v1,
@@ -163,14 +162,10 @@ TEST(ShortCut, WeighsEachSplitOfTheHierarchyByItsNeck) {
 
 TEST(ShortCut, SettersRejectBadValues) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  EXPECT_EQ(seg.getNeckExponent(), 3.0);
   EXPECT_EQ(seg.getNeckBound(), 0.25);
-  seg.setNeckExponent(2.0);
   seg.setNeckBound(0.5);
   for (double bad : {0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
                      std::numeric_limits<double>::infinity()}) {
-    seg.setNeckExponent(bad);
-    EXPECT_EQ(seg.getNeckExponent(), 2.0);
     seg.setNeckBound(bad);
     EXPECT_EQ(seg.getNeckBound(), 0.5);
   }

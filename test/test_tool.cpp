@@ -134,7 +134,7 @@ TEST_F(ToolTest, AcceptsEveryOption) {
   ASSERT_EQ(pcl::io::savePCDFileBinary((dir_ / "shape.pcd").string(), *makeShape()), 0);
   const ToolRun r = run("shape.pcd out.pcd -k 12 -centrality_samples 30 -crossing_fraction 0.3 "
                         "-area_fraction 0.01 -height_fraction 0.01 -beta 2 -alpha1 2 -alpha2 0.5 "
-                        "-threshold 0.05 -splits 50 -threads 1 -paper");
+                        "-threshold 0.05 -threads 1 -paper");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   EXPECT_GE(printedSegments(r.out), 1) << r.out;
   EXPECT_TRUE(fs::exists(dir_ / "out.pcd"));
@@ -255,11 +255,10 @@ TEST_F(ToolTest, BadParameterValuesFailCleanly) {
                                                                 {"-threshold", "-0.1"},
                                                                 {"-threshold", "nan"},
                                                                 {"-segments", "0"},
-                                                                {"-splits", "0"},
                                                                 {"-threads", "-1"},
                                                                 {"-k", "99999999999999"},
                                                                 {"-boundary_band", "0"},
-                                                                {"-bridge_gap", "0"}};
+                                                                {"-rim_merge", "0"}};
   for (const auto& option_value : bad)
     expectCleanFailure("shape.pcd out.pcd " + option_value.first + " " + option_value.second,
                        option_value.first);

@@ -90,7 +90,6 @@ struct CentralityParams {
   std::optional<int> samples;
   /// Extension: Fast computes eq. (1) on a coarse graph (f within about 1-2% of Exact's).
   CentralityMode mode = CentralityMode::Fast;
-  int representatives = 20000; ///< Fast: points of the coarse graph (smaller inputs: exact)
   /// Extension (core/starts.h): step 4's arbitrary first sample taken this many times (the
   /// first samples of one farthest-point chain), a segmentation from each, and the one closest
   /// to the others kept. 1: one start, the paper. Not in CAD mode, nor on an open view (a
@@ -117,11 +116,8 @@ struct RefinementParams {
 
 /** \brief Sec. 7: CAD mode, the faces of a mechanical part separated at its ridges. */
 struct CadParams {
-  bool enabled = false;         ///< CAD mode instead of elongated parts
-  int smoothing_iterations = 3; ///< Laplacian smoothing steps of the approximate normals
-  float ridge_angle = 5.0f;     ///< degrees: mean normal turn to the neighbours on a ridge point
-  float shrink = 0.1f;          ///< length factor of edges between points equidistant from a ridge
-  float stretch = 1.0f;         ///< length factor of edges pointing straight away from a ridge
+  bool enabled = false;     ///< CAD mode instead of elongated parts
+  float ridge_angle = 5.0f; ///< degrees: mean normal turn to the neighbours on a ridge point
 };
 
 /** \brief Sec. 5.1: the weights of the supernode graph G_s. */
@@ -134,26 +130,19 @@ struct SimilarityParams {
   bool normalize_width = true;
   /// Extension: which touching supernodes are joined (Saddles: the paper).
   Adjacency adjacency = Adjacency::All;
-  /// With Adjacency::All: a pair that meets at no saddle is joined only if its contact is at
-  /// least this share of the smaller of the two supernodes' contacts with all others.
-  double adjacent_share = 0.45;
   /// Extension: the weight of eq. (9) times exp(-w c), c the concavity of the pair's contact.
   std::optional<double> concavity = 3.0;
   /// Extension: flat supernodes (f_h < e sqrt(f_a)) leave the width ratio out of eq. (9).
   std::optional<double> flat_elongation = 0.1;
-  /// CAD mode: angle scale in degrees of the face-orientation similarity exp(-(angle/a)^2).
-  float face_angle = 15.0f;
 };
 
 /** \brief Sec. 5.2: the hierarchy of bisections and its stopping rule. */
 struct StoppingParams {
   StoppingRule rule = StoppingRule::ShortCut; ///< extension (Threshold: the paper)
-  double threshold = 0.1;     ///< no part is split at a higher NCut (every rule but Count)
-  int num_splits = 100;       ///< uniform split values tried on each eigenvector
-  int segments = 2;           ///< Count: the number of segments asked for
-  int max_segments = 20;      ///< ShortCut: at most this many segments
-  double neck_exponent = 3.0; ///< ShortCut: a split's NCut is weighted by neck^exponent
-  double neck_bound = 0.25;   ///< ShortCut: the weighted NCut below which a split is worth it
+  double threshold = 0.1;   ///< no part is split at a higher NCut (every rule but Count)
+  int segments = 2;         ///< Count: the number of segments asked for
+  int max_segments = 20;    ///< ShortCut: at most this many segments
+  double neck_bound = 0.25; ///< ShortCut: the weighted NCut below which a split is worth it
 };
 
 /** \brief Extension: point-level boundaries by minimum cuts between touching segments. */
@@ -161,7 +150,6 @@ struct BoundaryParams {
   /// The band around each common boundary holds at most this fraction of either segment's
   /// area. Off: boundaries are supernode boundaries (the paper).
   std::optional<double> band = 0.2;
-  double crease_weight = 3.0; ///< a kNN edge costs its length times exp(-w c), c its bend
   /// Extension (core/rim_merge.h), open views only: two touching segments, one of which
   /// reaches the view's rim, are merged when the planes of the boundary's two sides (each its
   /// points within half the width of the smallest part, 1% of the object's feature area, of

@@ -105,9 +105,6 @@ public:
   /** \param[in] mode  centrality.mode */
   void setCentralityMode(pcl_ncut_seg::CentralityMode mode);
   pcl_ncut_seg::CentralityMode getCentralityMode() const { return params_.centrality.mode; }
-  /** \param[in] representatives  centrality.representatives, >= 100 */
-  void setNumberOfRepresentatives(int representatives);
-  int getNumberOfRepresentatives() const { return params_.centrality.representatives; }
   /** \param[in] starts  centrality.starts, in [1, 16]; 1: one start of the farthest-point
    * sampling, as the paper. CAD mode and open views (a cloud with a rim) use one. */
   void setStarts(int starts);
@@ -139,9 +136,6 @@ public:
   /** \param[in] segments  stopping.max_segments, >= 1 */
   void setMaxSegments(int segments);
   int getMaxSegments() const { return params_.stopping.max_segments; }
-  /** \param[in] exponent  stopping.neck_exponent, > 0 (read by the short-cut rule) */
-  void setNeckExponent(double exponent);
-  double getNeckExponent() const { return params_.stopping.neck_exponent; }
   /** \param[in] bound  stopping.neck_bound, > 0 */
   void setNeckBound(double bound);
   double getNeckBound() const { return params_.stopping.neck_bound; }
@@ -151,25 +145,16 @@ public:
   void setNumberOfSegments(int segments);
   /** \brief stopping.segments, which only the count rule reads (getStoppingRule()). */
   int getNumberOfSegments() const { return params_.stopping.segments; }
-  /** \param[in] values  stopping.num_splits, >= 1 */
-  void setNumberOfSplitValues(int values);
-  int getNumberOfSplitValues() const { return params_.stopping.num_splits; }
   /** \param[in] normalize  similarity.normalize_width */
   void setNormalizeWidth(bool normalize);
   bool getNormalizeWidth() const { return params_.similarity.normalize_width; }
   /** \param[in] adjacency  similarity.adjacency */
   void setAdjacency(pcl_ncut_seg::Adjacency adjacency);
   pcl_ncut_seg::Adjacency getAdjacency() const { return params_.similarity.adjacency; }
-  /** \param[in] share  similarity.adjacent_share, in [0, 1] */
-  void setAdjacentShare(double share);
-  double getAdjacentShare() const { return params_.similarity.adjacent_share; }
   /** \param[in] cad  cad.enabled: CAD mode (Sec. 7); normals come from the input when the
    * point type has finite ones, else from PCL's estimation over the kNN neighbourhoods */
   void setCadMode(bool cad);
   bool getCadMode() const { return params_.cad.enabled; }
-  /** \param[in] degrees  similarity.face_angle, in (0, 90]; only the cut reads it */
-  void setFaceAngle(float degrees);
-  float getFaceAngle() const { return params_.similarity.face_angle; }
   /** \param[in] radii  graph.bridge_gap, > 0; std::nullopt: off */
   void setBridgeGap(std::optional<double> radii);
   std::optional<double> getBridgeGap() const { return params_.graph.bridge_gap; }
@@ -202,9 +187,6 @@ public:
   /** \param[in] fraction  boundary.band, in (0, 0.5]; std::nullopt: off */
   void setBoundaryBand(std::optional<double> fraction);
   std::optional<double> getBoundaryBand() const { return params_.boundary.band; }
-  /** \param[in] weight  boundary.crease_weight, >= 0 */
-  void setBoundaryCreaseWeight(double weight);
-  double getBoundaryCreaseWeight() const { return params_.boundary.crease_weight; }
   /** \brief Open views (core/rim_merge.h): on one view from the sensor origin, two touching
    * segments, one of which reaches the view's rim, are merged when the planes of their boundary's
    * two sides meet at a concave angle below this and the boundary is no limb's neck. \param[in]

@@ -85,7 +85,7 @@ def test_parameters_by_name(points):
 
 def test_paper_true_is_the_papers_settings(points):
     paper = pcl_ncut_seg.default_parameters(paper=True)
-    assert paper["centrality"] == "exact" and paper["bridge_gap"] is None
+    assert paper["centrality"] == "exact" and paper["denoise"] is None
     assert pcl_ncut_seg.Segmenter(paper=True).parameters == paper
     by_paper = pcl_ncut_seg.segment(points, paper=True)
     # The same values one by one.

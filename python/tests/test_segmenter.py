@@ -10,14 +10,14 @@ TABLE = pcl_ncut_seg.parameter_table()
 # Per parameter, a valid value other than its default (every row must have one).
 OTHER = {
     "k": 11, "bridge_gap": None, "denoise": None, "irregular_sampling": None, "max_points": 1000, "single_view": False, "centrality_samples": 30, "centrality": "exact",
-    "representatives": 500, "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
+    "starts": 2, "crossing_fraction": 0.25, "area_fraction": 0.02,
     "height_fraction": 0.02, "crease_split": None, "cad": True,
-    "cad_smoothing": 2, "ridge_angle": 6.0, "ridge_shrink": 0.2, "ridge_stretch": 1.5,
+    "ridge_angle": 6.0,
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
-    "adjacency": "trees", "adjacent_share": 0.5, "concavity": 2.0, "flat_elongation": 0.2,
-    "face_angle": 20.0, "stopping": "threshold", "threshold": 0.2, "segments": 3,
-    "splits": 50, "max_segments": 4,
-    "neck_exponent": 2.0, "neck_bound": 0.3, "boundary_band": 0.1, "boundary_crease": 1.0, "rim_merge": None,
+    "adjacency": "trees", "concavity": 2.0, "flat_elongation": 0.2,
+    "stopping": "threshold", "threshold": 0.2, "segments": 3,
+    "max_segments": 4,
+    "neck_bound": 0.3, "boundary_band": 0.1, "rim_merge": None,
     "threads": 1,
 }
 
@@ -96,7 +96,7 @@ def test_a_recut_keeps_the_expensive_stage(points):
     assert seg.phase_times["knn"] > 0 and seg.phase_times["centrality"] > 0
     analysis = seg.get_centrality()
     # Every cut stage at once: similarity, stopping, boundary.
-    cut = dict(beta=3.0, alpha1=1.5, threshold=0.05, segments=4, boundary_crease=1.0)
+    cut = dict(beta=3.0, alpha1=1.5, threshold=0.05, segments=4, boundary_band=0.1)
     recut = seg.segment(**cut)
     assert seg.analysis_count == 1
     times = seg.phase_times

@@ -30,7 +30,7 @@ CASES = [
     ({}, []),
     ({"k": 12, "segments": 3}, ["-k", "12", "-segments", "3"]),
     ({"paper": True, "threshold": 0.05}, ["-paper", "-threshold", "0.05"]),
-    ({"crease_split": 0.5, "boundary_crease": 1}, ["-crease_split", "0.5", "-boundary_crease", "1"]),
+    ({"crease_split": 0.5, "neck_bound": 0.3}, ["-crease_split", "0.5", "-neck_bound", "0.3"]),
 ]
 
 

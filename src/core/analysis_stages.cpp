@@ -1,7 +1,7 @@
 #include <pcl_ncut_seg/core/analysis_stages.h>
+#include <pcl_ncut_seg/core/bridging.h>
 
 #include <pcl_ncut_seg/core/boundary_refinement.h>
-#include <pcl_ncut_seg/core/bridging.h>
 #include <pcl_ncut_seg/core/coarse_centrality.h>
 #include <pcl_ncut_seg/core/concavity.h>
 #include <pcl_ncut_seg/core/crease_split.h>
@@ -62,8 +62,8 @@ std::vector<Centrality> centralityStage(const CsrGraph& graph, const Parameters&
   std::vector<Centrality> f =
       c.mode == CentralityMode::Exact
           ? computeCentralities(graph, samples, threads, tie_rank, fraction, num_starts)
-          : computeCoarseCentralities(graph, static_cast<std::size_t>(c.representatives), samples,
-                                      threads, tie_rank, fraction, num_starts);
+          : computeCoarseCentralities(graph, kFastCentralityRepresentatives, samples, threads,
+                                      tie_rank, fraction, num_starts);
   if (noisy) // the noise's own share of f, taken out at the scale it was found at
     for (Centrality& one : f)
       one.f = neighbourhoodMean(graph, one.f, threads);

@@ -97,7 +97,7 @@ struct BoundaryRecut {
   const BoundaryParams& params;
   std::vector<std::uint32_t>& segment;
   const bool use_crease;
-  std::array<double, 256> factor; ///< per crease byte, exp(-crease_weight c)
+  std::array<double, 256> factor; ///< per crease byte, exp(-kBoundaryCreaseWeight c)
   std::vector<double> seg_area;
   std::vector<std::size_t> seg_count;
   std::vector<std::uint32_t> frontier; ///< in order of ids, then as points joined it
@@ -112,12 +112,11 @@ struct BoundaryRecut {
                 const std::vector<std::uint8_t>& crease, const BoundaryParams& params,
                 std::vector<std::uint32_t>& segment, std::size_t num_segments)
       : graph(graph), radii(radii), crease(crease), params(params), segment(segment),
-        use_crease(!crease.empty() && crease.size() == graph.numDirectedEdges() &&
-                   params.crease_weight > 0.0),
+        use_crease(!crease.empty() && crease.size() == graph.numDirectedEdges()),
         seg_area(num_segments, 0.0), seg_count(num_segments, 0) {
     for (std::size_t c = 0; c < factor.size(); ++c)
       factor[c] =
-          use_crease ? std::exp(-params.crease_weight * static_cast<double>(c) / 16.0) : 1.0;
+          use_crease ? std::exp(-kBoundaryCreaseWeight * static_cast<double>(c) / 16.0) : 1.0;
     const std::size_t n = graph.numVertices();
     for (std::uint32_t p = 0; p < n; ++p) {
       seg_area[segment[p]] += squaredRadius(radii, p);

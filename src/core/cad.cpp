@@ -227,7 +227,6 @@ faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std
 WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
                                      const Connectivity& conn, const Connectivity& face_angles,
                                      const SimilarityParams& params) {
-  const double face_angle = params.face_angle;
   // The r_i - m_i edges of eq. (7) as in Sec. 5.1; the member edges are replaced.
   SimilarityParams base = params;
   base.adjacency = Adjacency::Saddles; // the member edges are replaced below
@@ -246,7 +245,7 @@ WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const Feature
       boundary[key.second] += value;
     }
   for (const auto& [key, theta] : face_angles) {
-    const double x = theta / face_angle;
+    const double x = theta / kFaceAngle;
     // ... scaled by the share of the smaller boundary they have in common (conn of eq. 8), so
     // that a short contact through a few misplaced points cannot glue two faces.
     auto it = conn.find(key);
@@ -439,10 +438,10 @@ Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normal
                     const PhaseProgressFn& progress) {
   const CadParams& cad = params.cad;
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<float> smoothed = smoothNormals(graph, normals, cad.smoothing_iterations);
+  const std::vector<float> smoothed = smoothNormals(graph, normals, kCadSmoothingIterations);
   const std::vector<bool> ridge = ridgePoints(graph, smoothed, cad.ridge_angle);
   const std::vector<float> phi = ridgeDistance(graph, ridge);
-  CsrGraph transformed = transformGraph(graph, phi, cad.shrink, cad.stretch);
+  CsrGraph transformed = transformGraph(graph, phi, kRidgeShrink, kRidgeStretch);
   times.knn += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   std::vector<Centrality> f = centralityStage(transformed, params, tie_rank, times, progress);

@@ -255,7 +255,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
     Hierarchy::Node node;
     node.vertices = std::move(vertices);
     node.parent = parent;
-    Bisection b = bisect(graph, num_supernodes, node.vertices, params.num_splits);
+    Bisection b = bisect(graph, num_supernodes, node.vertices, kSplitValues);
     node.has_split = b.valid;
     node.ncut = b.ncut;
     h.nodes.push_back(std::move(node));
@@ -286,8 +286,8 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
       if (weigh) {
         const double neck = split_neck ? split_neck(splits[best].v1, splits[best].v2) : 0.0;
         worth.resize(h.nodes.size(), 0.0);
-        worth[best] = splitWorth(h.nodes[best].ncut, neck, params.neck_exponent, params.neck_bound,
-                                 kNeckFloor);
+        worth[best] =
+            splitWorth(h.nodes[best].ncut, neck, kNeckExponent, params.neck_bound, kNeckFloor);
       }
       split(best);
     }

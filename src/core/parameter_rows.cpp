@@ -67,15 +67,9 @@ void centralityRows(Rows& t) {
   t.push_back(choice<CentralityMode>(
       row("centrality", "centrality.mode", S::Centrality, K::Choice, "MODE",
           "exact: eq. (1) with searches over the whole kNN graph, as the paper; fast: on a "
-          "coarse graph of representatives, carried back to every point",
+          "coarse graph of 20,000 representatives, carried back to every point",
           false),
       {"exact", "fast"}, FIELD(centrality.mode)));
-  t.push_back(number<int, int>(
-      row("representatives", "centrality.representatives", S::Centrality, K::Integer, "R",
-          "fast centrality: points of the coarse graph (clouds of at most R points are "
-          "computed exactly)",
-          false),
-      atLeast(100), FIELD(centrality.representatives)));
   t.push_back(number<int, int>(
       row("starts", "centrality.starts", S::Centrality, K::Integer, "S",
           "farthest-point sampling of eq. (1) from S starts (the first S samples of one chain), "
@@ -121,24 +115,12 @@ void cadRows(Rows& t) {
                           "ridges, instead of elongated parts",
                           true),
                       FIELD(cad.enabled)));
-  t.push_back(
-      number<int, int>(row("cad_smoothing", "cad.smoothing_iterations", S::Cad, K::Integer, "N",
-                           "CAD mode: Laplacian smoothing steps of the approximate normals", true),
-                       atLeast(0), FIELD(cad.smoothing_iterations)));
   t.push_back(number<float, float>(
       row("ridge_angle", "cad.ridge_angle", S::Cad, K::Real, "DEG",
           "CAD mode: a ridge point's normal turns by more than this to its neighbours' on "
           "average",
           true),
       leftOpen(0, 90), FIELD(cad.ridge_angle)));
-  t.push_back(number<float, float>(
-      row("ridge_shrink", "cad.shrink", S::Cad, K::Real, "F",
-          "CAD mode: length factor of edges between points equidistant from a ridge", true),
-      above(0), FIELD(cad.shrink)));
-  t.push_back(number<float, float>(
-      row("ridge_stretch", "cad.stretch", S::Cad, K::Real, "F",
-          "CAD mode: length factor of edges pointing straight away from a ridge", true),
-      above(0), FIELD(cad.stretch)));
 }
 
 /// Similarity (Sec. 5.1)
@@ -166,16 +148,10 @@ void similarityRows(Rows& t) {
   t.push_back(choice<Adjacency>(
       row("adjacency", "similarity.adjacency", S::Similarity, K::Choice, "WHICH",
           "which touching supernodes are joined: saddles (the paper), trees (also trees of "
-          "supernodes that touch but meet at no saddle), all (every touching pair, subject to "
-          "-adjacent_share)",
+          "supernodes that touch but meet at no saddle), all (every pair touching across a "
+          "long enough boundary)",
           false),
       {"saddles", "trees", "all"}, FIELD(similarity.adjacency)));
-  t.push_back(number<double, double>(
-      row("adjacent_share", "similarity.adjacent_share", S::Similarity, K::Real, "S",
-          "adjacency all: a pair that meets at no saddle is joined when its contact is at "
-          "least this share of the smaller total contact of the two",
-          false),
-      closed(0, 1), FIELD(similarity.adjacent_share)));
   t.push_back(number<double, std::optional<double>>(
       row("concavity", "similarity.concavity", S::Similarity, K::Real, "W",
           "concave creases: the weight of eq. (9) is multiplied by exp(-W c), c how concave "
@@ -188,10 +164,6 @@ void similarityRows(Rows& t) {
           "eq. (9) leaves out the width ratio",
           false),
       above(0), FIELD(similarity.flat_elongation), "off"));
-  t.push_back(number<float, float>(
-      row("face_angle", "similarity.face_angle", S::Similarity, K::Real, "DEG",
-          "CAD mode: angle scale of the face-orientation similarity exp(-(angle / DEG)^2)", false),
-      leftOpen(0, 90), FIELD(similarity.face_angle)));
 }
 
 /// Stopping (Sec. 5.2)
@@ -223,19 +195,9 @@ void stoppingRows(Rows& t) {
     };
     t.push_back(segments);
   }
-  t.push_back(
-      number<int, int>(row("splits", "stopping.num_splits", S::Stopping, K::Integer, "N",
-                           "uniform split values tried on each eigenvector (Sec. 5.2)", true),
-                       atLeast(1), FIELD(stopping.num_splits)));
   t.push_back(number<int, int>(row("max_segments", "stopping.max_segments", S::Stopping, K::Integer,
                                    "N", "short_cut: at most N segments", false),
                                atLeast(1), FIELD(stopping.max_segments)));
-  t.push_back(number<double, double>(
-      row("neck_exponent", "stopping.neck_exponent", S::Stopping, K::Real, "W",
-          "short_cut: a split's NCut is weighted by neck^W, neck = its boundary's length over "
-          "the square root of the smaller side's area",
-          false),
-      above(0), FIELD(stopping.neck_exponent)));
   t.push_back(number<double, double>(
       row("neck_bound", "stopping.neck_bound", S::Stopping, K::Real, "B",
           "short_cut: the weighted NCut below which a split is worth making (larger: more "
@@ -252,12 +214,6 @@ void boundaryRows(Rows& t) {
           "a band holding at most this fraction of either segment's area",
           false),
       leftOpen(0, 0.5), FIELD(boundary.band), "off"));
-  t.push_back(number<double, double>(
-      row("boundary_crease", "boundary.crease_weight", S::Boundary, K::Real, "W",
-          "boundary refinement: a kNN edge's cut cost is its length times exp(-W c), c its "
-          "concave bend (0: the shortest boundary)",
-          false),
-      atLeast(0), FIELD(boundary.crease_weight)));
   t.push_back(number<double, std::optional<double>>(
       row("rim_merge", "boundary.rim_merge", S::Boundary, K::Real, "DEG",
           "open views (one view from the sensor origin, -single_view): merge two "

@@ -189,7 +189,7 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
       const auto [i, j] = key;
       if (i == j || sn.parent[i] == j || sn.parent[j] == i)
         continue;
-      if (value < params.adjacent_share * std::min(contact[i], contact[j]))
+      if (value < kAdjacentShare * std::min(contact[i], contact[j]))
         continue;
       g.edges.push_back({l + i, l + j, similarity(i, j)});
       tree[find(i)] = find(j);

@@ -107,8 +107,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                alpha2 = kPositive[in.next() % 9];
   const double threshold = kThreshold[in.next() % 8];
   const int segments_wanted = (flags & 1) ? 1 + in.next() % 9 : (in.next(), 0);
-  const std::uint8_t splits_byte = in.next();
-  const int splits = splits_byte == 255 ? INT_MAX : 1 + splits_byte % 200;
+  // The analysis' resolution: 0 the default, 255 off, else 101-354 points (subsampling).
+  const std::uint8_t max_points_byte = in.next();
   const unsigned threads = 1 + in.next() % 3;
   // Scale 1e-6 .. 1e6 and an offset of up to 1e4: coordinates stay far from overflow.
   const int scale_exp = static_cast<int>(in.next() % 13) - 6;
@@ -175,7 +175,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     seg.setThreshold(threshold);
     if (segments_wanted > 0)
       seg.setNumberOfSegments(segments_wanted);
-    seg.setNumberOfSplitValues(splits);
+    if (max_points_byte == 255)
+      seg.setMaxPoints(std::nullopt);
+    else if (max_points_byte > 0)
+      seg.setMaxPoints(100 + max_points_byte);
     seg.setNormalizeWidth(flags & 2);
     if (!(flags & 4)) // else the default, every touching pair
       seg.setAdjacency(pcl_ncut_seg::Adjacency::Saddles);
@@ -184,7 +187,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     using Off = std::optional<double>;
     static const Off kRadii[] = {0, Off(), 0.5, 1e3}, kWeight[] = {0, Off(), 0.01, 1e3},
                      kElongation[] = {0, Off(), 1e-3, 10};
-    static const double kShare[] = {0, 0, 1, 0};
     static const int kMaxSegments[] = {0, 1, 2, INT_MAX};
     if (options1 & 3)
       seg.setBridgeGap(kRadii[options1 & 3]);
@@ -201,20 +203,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (((options2 >> 4) & 3) == 3) {
       if (seg.getAdjacency() == pcl_ncut_seg::Adjacency::All)
         seg.setAdjacency(pcl_ncut_seg::Adjacency::Trees);
-    } else if ((options2 >> 4) & 3)
-      seg.setAdjacentShare(kShare[(options2 >> 4) & 3]);
+    } else if (((options2 >> 4) & 3) == 1)
+      seg.setAdjacency(pcl_ncut_seg::Adjacency::Saddles);
     if (options2 & 0x80)
       seg.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact);
     static const Off kBand[] = {0, Off(), 0.5, 1e-3}, kCreaseSplit[] = {0, Off(), 1e-6, 1e3};
     if (later_options & 3)
       seg.setBoundaryBand(kBand[later_options & 3]);
     if (later_options & 4)
-      seg.setBoundaryCreaseWeight(1e3);
+      seg.setRimMerge(std::nullopt);
     if ((later_options >> 3) & 3)
       seg.setCreaseSplit(kCreaseSplit[(later_options >> 3) & 3]);
     // The short-cut stopping rule at its extremes.
     if (flags & 0x80) {
-      seg.setNeckExponent(1e3);
       seg.setNeckBound(1e300);
     }
   };
@@ -257,7 +258,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   seg.setAlpha2(kPositive[flags % 9]);
   seg.setFlatElongation(options1 & 0x20 ? std::optional<double>() : 0.2);
   seg.setNeckBound(flags & 0x08 ? 1e-3 : 0.5);
-  seg.setBoundaryCreaseWeight(later_options & 4 ? 0.0 : 3.0);
+  seg.setRimMerge(later_options & 4 ? std::optional<double>(170.0) : std::nullopt);
   seg.extract(segments);
   FUZZ_CHECK(!segments.empty());
   checkPartition(segments, wanted);

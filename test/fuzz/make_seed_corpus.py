@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the hand-made seed inputs of test/fuzz/corpus (the fuzzer adds its own beside them).
 Layout, as fuzz_extract.cpp reads it: 14 parameter bytes (flags, k, samples, crossing, area,
-height, beta, alpha1, alpha2, threshold, segments, splits, threads, scale), then 3 signed bytes
+height, beta, alpha1, alpha2, threshold, segments, max_points, threads, scale), then 3 signed bytes
 per point (-128 = NaN, 127 = infinity), then up to two bytes of options beyond the paper (see
 fuzz_extract.cpp; none or zeros keep the defaults); the samples byte's high 5 bits set the
 boundary refinement and the crease splits."""
@@ -13,9 +13,9 @@ HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 
 
 def params(flags=0x06, k=8, samples=0, crossing=77, area=3, height=3, beta=5, alpha1=5,
-           alpha2=3, threshold=2, segments=5, splits=99, threads=1, scale=5):
+           alpha2=3, threshold=2, segments=5, max_points=99, threads=1, scale=5):
     return bytes([flags, k, samples, crossing, area, height, beta, alpha1, alpha2, threshold,
-                  segments, splits, threads, scale])
+                  segments, max_points, threads, scale])
 
 
 def pts(points):
@@ -50,7 +50,7 @@ seeds = {
     "indices": params(flags=0x26) + pts(sphere(120, 40)),
     "indices_out_of_range": params(flags=0x66) + pts(sphere(60, 40)),
     "all_nan": params() + pts([(-128, -128, -128)] * 20),
-    "huge_splits_far": params(flags=0x17, splits=255, scale=12) + pts(sphere(100, 50)),
+    "huge_splits_far": params(flags=0x17, max_points=255, scale=12) + pts(sphere(100, 50)),
     "tiny_scale": params(scale=0, threads=2) + pts(sphere(100, 50)),
     # Options beyond the paper: CAD mode; every option at its extreme with exact centrality;
     # every option off (the paper).

@@ -29,6 +29,10 @@ std::vector<std::uint8_t> edgeCreases(const CsrGraph& graph, const float* xyz,
                                       const std::vector<float>& normals, unsigned num_threads = 0,
                                       double typical_bend = 0.0);
 
+/// A kNN edge's cut cost is its length times exp(-w c), c its concave bend: the weight w of
+/// the concavity term of eq. (9)'s default, so a boundary prefers the creases the cut did.
+constexpr double kBoundaryCreaseWeight = 3.0;
+
 /** \brief Recut the boundary of each pair of touching segments (in order of their ids) with a
  * minimum cut over the pair's band on the kNN graph: the segments' points outside the band
  * are the source and the sink. Every point keeps a segment and no segment empties (each keeps

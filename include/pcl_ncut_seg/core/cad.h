@@ -70,9 +70,20 @@ std::map<std::pair<std::uint32_t, std::uint32_t>, double>
 faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label,
                   const std::vector<bool>& ridge = {});
 
+/// Sec. 7 leaves these open. Laplacian smoothing steps of the approximate normals: enough to
+/// quiet the sampling's scatter, few enough to keep a ridge one or two points wide.
+constexpr int kCadSmoothingIterations = 3;
+/// Length factors of kNN edges: between points equidistant from a ridge (shrunk, so that a face
+/// becomes an elongated feature along the ridge) and pointing straight away from it (kept).
+constexpr float kRidgeShrink = 0.1f;
+constexpr float kRidgeStretch = 1.0f;
+/// Angle scale in degrees of the face-orientation similarity exp(-(angle / a)^2): faces
+/// meeting at 15 degrees are e times less similar than coplanar ones.
+constexpr double kFaceAngle = 15.0;
+
 /** \brief G_s in CAD mode (Sec. 7 after Sec. 5.1): r_i - m_i with the weight of eq. (7); m_i -
  * m_j for every pair of supernodes touching in the kNN graph, weighted by the similarity of
- * their faces' orientations exp(-(theta_ij / face_angle)^2) (theta_ij from faceContactAngles)
+ * their faces' orientations exp(-(theta_ij / kFaceAngle)^2) (theta_ij from faceContactAngles)
  * times the share of their contact in the smaller of their boundaries,
  * conn(s_i, s_j) / min(sum_k conn(s_i, s_k), sum_k conn(s_j, s_k)) over k != i, j resp.
  */

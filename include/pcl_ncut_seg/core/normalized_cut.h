@@ -35,6 +35,10 @@ struct Bisection {
 Bisection bisect(const WeightedGraph& graph, std::size_t num_supernodes,
                  const std::vector<std::uint32_t>& subset, int num_splits);
 
+/// Sec. 5.2 leaves the number of uniform split values open; 100 places the split within 1% of
+/// the eigenvector's range, finer than the supernodes resolve on any model we measured.
+constexpr int kSplitValues = 100;
+
 /** \brief The binary tree of bisections (Sec. 5.2). Node 0 is the root (all vertices). */
 struct Hierarchy {
   struct Node {

@@ -61,6 +61,10 @@ private:
  * making by itself. */
 double splitWorth(double ncut, double neck, double exponent, double bound, double floor);
 
+/// The pipeline's exponent of the neck in splitWorth(): a boundary twice as long per unit of
+/// the smaller side's size must cut eight times cheaper to be worth as much.
+constexpr double kNeckExponent = 3.0;
+
 /** \brief The short-cut rule over a tree of splits: which splits to keep.
  *
  * Node i of the tree (nodes in creation order: a child after its parent) is a split with

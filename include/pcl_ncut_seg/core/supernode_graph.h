@@ -34,9 +34,15 @@ struct WeightedGraph {
   std::vector<Edge> edges;
 };
 
+/// Adjacency::All: a pair of supernodes that meets at no saddle is joined only when its contact
+/// is at least this share of the smaller of the two supernodes' contacts with all others: a
+/// neighbour across a long common boundary, not one that grazes it.
+constexpr double kAdjacentShare = 0.45;
+
 /** \brief Build G_s: r_i - m_i with weight (7); m_i - m_j with weight (9) when s_i was created
- * at the saddle where s_j terminates (or vice versa); with connect_adjacent_trees, also the
- * most connected kNN-adjacent pair between member trees that no saddle joins, weighted by (9).
+ * at the saddle where s_j terminates (or vice versa); with Adjacency::Trees, also the most
+ * connected kNN-adjacent pair between member trees that no saddle joins, and with
+ * Adjacency::All every pair whose contact is at least kAdjacentShare, each weighted by (9).
  */
 WeightedGraph buildSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
                                   const Connectivity& conn, const SimilarityParams& params,
