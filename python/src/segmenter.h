@@ -1,8 +1,8 @@
 /*
  * pcl_ncut_seg Python module: Segmenter, a pcl::SupernodeNCutSegmentation<pcl::PointNormal>
- * over a numpy array of points (and one of normals, which CAD mode reads). The PCL class does the work (the same labels, the same checks); this class
- * converts the array, the parameters and the results, and turns the library's console errors
- * into ValueError.
+ * over a numpy array of points (and one of normals, which CAD mode reads). The PCL class does the
+ * work (the same labels, the same checks); this class converts the array, the parameters and the
+ * results, and turns the library's console errors into ValueError.
  */
 #pragma once
 
@@ -40,8 +40,8 @@ public:
 
   /** \brief Segment points (None: the points of the last call again) after setting the
    * keywords, with the normals of the points (None: none); the labels, 1-based, 0 for points
-   * in no segment. Reuses the expensive stage
-   * when only cut parameters changed since the last call on the same points. */
+   * in no segment. Reuses the expensive stage when only cut parameters changed since the last
+   * call on the same points. */
   py::array_t<std::int32_t> segment(const py::object& points, const py::object& normals,
                                     const py::dict& keywords);
 
