@@ -7,6 +7,7 @@ compare, so an installed stub always says what the installed module takes.
     python3 -m pcl_ncut_seg._stub [OUTPUT]      (default: standard output)
 """
 import inspect
+import math
 import sys
 
 import pcl_ncut_seg
@@ -81,7 +82,9 @@ def keywords(with_defaults):
     out = ["paper: bool = " + ("False" if with_defaults else "...")]
     out += [f"{s['name']}: Literal[True] = ..." for s in pcl_ncut_seg.parameter_shorthands()]
     for row in keyword_rows():
-        default = repr(row["default"]) if with_defaults else "..."
+        value = row["default"]
+        literal = not (isinstance(value, float) and not math.isfinite(value))  # no inf in a stub
+        default = repr(value) if with_defaults and literal else "..."
         out.append(f"{row['name']}: {parameter_type(row)} = {default}")
     return out
 

@@ -2,6 +2,7 @@
 and saying what the module takes, with every name and default read from the module's
 parameter table at run time."""
 import ast
+import math
 import os
 
 import pcl_ncut_seg
@@ -62,8 +63,11 @@ def check_parameter(row, annotation, default):
         assert [ast.literal_eval(e) for e in literal.slice.elts] == row["choices"], row["name"]
     else:
         assert KIND_TYPES[row["kind"]].__name__ in text, (row["name"], text)
-    if default is not None and not (isinstance(default, ast.Constant)
-                                    and default.value is Ellipsis):
+    if default is None:
+        return
+    if isinstance(default, ast.Constant) and default.value is Ellipsis:  # only for inf or NaN
+        assert isinstance(row["default"], float) and not math.isfinite(row["default"])
+    else:
         value = ast.literal_eval(default)
         assert value == row["default"] and type(value) is type(row["default"]), row["name"]
 
