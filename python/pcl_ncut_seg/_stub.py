@@ -17,7 +17,7 @@ FUNCTIONS = {
     "parameter_table": "() -> list[dict[str, Any]]",
     "parameter_shorthands": "() -> list[dict[str, Any]]",
     "default_parameters": "(paper: bool = False) -> dict[str, Any]",
-    "as_arrays": "(cloud: Cloud, normals: npt.ArrayLike | None = None) -> tuple[Any, Any]",
+    "as_arrays": "(cloud: _Cloud, normals: npt.ArrayLike | None = None) -> tuple[Any, Any]",
     "segment_colors": "(labels: npt.ArrayLike) -> npt.NDArray[np.uint8]",
     "colorize": "(cloud: _O3DCloud, labels: npt.ArrayLike) -> _O3DCloud",
 }
@@ -52,9 +52,9 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
-__all__: list[str]
+__all__ = {all}
 
-Cloud = Any
+_Cloud = Any
 """What segment() takes: an (N, 3) or (H, W, 3) float32 or float64 array, anything numpy
 reads as one (__array__), or an open3d.geometry.PointCloud or open3d.t.geometry.PointCloud."""
 _O3DCloud = TypeVar("_O3DCloud")
@@ -119,8 +119,8 @@ def function(name, signature_head, parameters, result, doc, indent=""):
 
 def stub():
     seg = pcl_ncut_seg.Segmenter
-    out = [HEADER.format(version=pcl_ncut_seg.__version__)]
-    out.append(function("segment", ["points: Cloud", "normals: npt.ArrayLike | None = None"],
+    out = [HEADER.format(version=pcl_ncut_seg.__version__, all=repr(list(pcl_ncut_seg.__all__)))]
+    out.append(function("segment", ["points: _Cloud", "normals: npt.ArrayLike | None = None"],
                         keywords(True), "npt.NDArray[np.int32]", own_doc(pcl_ncut_seg.segment)))
     for name, signature in FUNCTIONS.items():
         out.append(f"def {name}{signature}:\n"
@@ -130,7 +130,7 @@ def stub():
                         "Parameters by name (the project's defaults for the others; paper=True: "
                         "the paper's settings).", "    "))
     out.append(function("set", ["self"], keywords(False), "None", own_doc(seg.set), "    "))
-    out.append(function("segment", ["self", "points: Cloud | None = None",
+    out.append(function("segment", ["self", "points: _Cloud | None = None",
                                     "normals: npt.ArrayLike | None = None"],
                         keywords(False), "npt.NDArray[np.int32]", own_doc(seg.segment), "    "))
     for name, signature in METHODS.items():

@@ -4,6 +4,11 @@ parameter table at run time."""
 import ast
 import math
 import os
+import re
+import subprocess
+import sys
+
+import pytest
 
 import pcl_ncut_seg
 from pcl_ncut_seg import _stub
@@ -103,3 +108,43 @@ def test_segmenter_attributes_match():
         check_parameter(row, getter.returns, None)
         assert ast.unparse(setter.args.args[1].annotation) == ast.unparse(getter.returns)
         assert ast.get_docstring(getter).startswith(row["help"])
+
+
+def run_mypy_tool(tmp_path, config_flag, *args):
+    """python -m <args> in tmp_path (away from the sources), as a checker sees the package
+    that is imported here; open3d has no stubs of its own."""
+    pytest.importorskip("mypy", reason="mypy is not importable (apt-get install python3-mypy)")
+    config = tmp_path / "mypy.ini"
+    config.write_text("[mypy]\nignore_missing_imports = True\n")
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(PACKAGE))
+    return subprocess.run([sys.executable, "-m", *args, config_flag, str(config)],
+                          cwd=tmp_path, env=env, capture_output=True, text=True)
+
+
+def test_stubtest_finds_the_stub_true_to_the_module(tmp_path):
+    # The class' metaclass (pybind11's) is no stub's business: only that error is allowed.
+    (tmp_path / "allow.txt").write_text("pcl_ncut_seg.Segmenter\n")
+    run = run_mypy_tool(tmp_path, "--mypy-config-file", "mypy.stubtest", "--allowlist", str(tmp_path / "allow.txt"),
+                        "pcl_ncut_seg")
+    assert run.returncode == 0, run.stdout + run.stderr
+
+
+def test_a_type_checker_knows_the_parameters(tmp_path):
+    rows = pcl_ncut_seg.parameter_table()
+    number = next(r["name"] for r in rows if r["kind"] == "integer")
+    choice = next(r for r in rows if r["kind"] == "choice")
+    good = [f"pcl_ncut_seg.segment(points, {number}=3)",
+            f"seg = pcl_ncut_seg.Segmenter({choice['name']}={choice['choices'][0]!r})",
+            f"seg.{number} = 4",
+            "labels: npt.NDArray[np.int32] = seg.segment(points)"]
+    bad = [f"pcl_ncut_seg.segment(points, {number}='many')",
+           f"pcl_ncut_seg.Segmenter({choice['name']}='no such choice')",
+           "pcl_ncut_seg.segment(points, no_such_parameter=1)",
+           f"seg.{number} = 'many'"]
+    lines = ["import numpy as np", "import numpy.typing as npt", "import pcl_ncut_seg",
+             "points = np.zeros((10, 3))"] + good + bad
+    (tmp_path / "use.py").write_text("\n".join(lines) + "\n")
+    run = run_mypy_tool(tmp_path, "--config-file", "mypy", "use.py")
+    flagged = {int(m) for m in re.findall(r"^use\.py:(\d+): error", run.stdout, re.M)}
+    first_bad = len(lines) - len(bad) + 1
+    assert flagged == set(range(first_bad, len(lines) + 1)), run.stdout
