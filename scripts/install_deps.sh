@@ -8,6 +8,8 @@ PACKAGES=(
   libpcl-dev libeigen3-dev libflann-dev libboost-graph-dev libspectra-dev
   libgtest-dev
   python3-dev python3-pybind11 python3-numpy python3-pytest   # the Python module and its tests
+  python3-open3d python3-mypy      # the Open3D tests and example; the stub checked by mypy, stubtest
+  python3-venv python3-pip python3-setuptools python3-wheel ccache   # scripts/python_package.sh
   pcl-tools xvfb xauth
   clang libclang-rt-dev libomp-dev   # scripts/fuzz.sh: libFuzzer, sanitizer runtimes, OpenMP
   # ROS 1 (ros/: the nodelet, the node, their rostests; the README's ROS section)

@@ -28,11 +28,12 @@ cmake -S test/consumer -B "$WORK/consumer" -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_PREFIX_PATH="$WORK/prefix"
 cmake --build "$WORK/consumer" -j "$JOBS"
 "$WORK/consumer/pcl_ncut_seg_consumer"
-# The installed Python module imports and segments (when pybind11 was found).
-PY_MODULE="$(find "$WORK/prefix" -name 'pcl_ncut_seg.cpython-*.so' | head -n 1)"
+# The installed Python package imports and segments (when pybind11 was found).
+PY_MODULE="$(find "$WORK/prefix" -name '_pcl_ncut_seg.cpython-*.so' | head -n 1)"
 if [ -n "$PY_MODULE" ]; then
   PYTHON="$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$BUILD_DIR/CMakeCache.txt")"
-  PYTHONPATH="$(dirname "$PY_MODULE")" "$PYTHON" -c 'import numpy, pcl_ncut_seg
+  test -s "$(dirname "$PY_MODULE")/__init__.pyi" && test -e "$(dirname "$PY_MODULE")/py.typed"
+  PYTHONPATH="$(dirname "$(dirname "$PY_MODULE")")" "$PYTHON" -c 'import numpy, pcl_ncut_seg
 labels = pcl_ncut_seg.segment(numpy.random.default_rng(1).normal(size=(500, 3)), segments=2)
 assert labels.shape == (500,) and labels.max() == 2, labels'
 fi

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Segment a point cloud read with Open3D's tensor API and write it back with a `label`
-field and a colour per segment.
+"""Segment a point cloud read with Open3D's tensor API (its points, and its normals when it has
+some) and write it back with a `label` field and a colour per segment.
 
     python3 open3d_example.py INPUT [OUTPUT] [name=value ...] [--show]
 
@@ -9,7 +9,6 @@ INPUT is anything o3d.t.io.read_point_cloud reads (.pcd, .ply, ...); OUTPUT defa
 flag names (segments=6, k=12, paper=True, ...). If INPUT already has a `label` field (the
 pcl_ncut_seg tool's output, say), the script also says how many points got the same label.
 """
-import colorsys
 import os
 import sys
 
@@ -17,18 +16,6 @@ import numpy as np
 import open3d as o3d
 
 import pcl_ncut_seg
-
-
-def segment_colors(labels):
-    """A colour per segment (golden-ratio hues, as the library's getColoredCloud), black for
-    points in no segment; uint8, N x 3."""
-    t = int(labels.max(initial=0))
-    palette = np.zeros((t + 1, 3), np.uint8)
-    for i in range(t):
-        hue = (0.1 + 0.618033988749895 * i) % 1.0
-        value = 0.7 if (i // 7) % 2 else 0.95
-        palette[i + 1] = np.floor(np.array(colorsys.hsv_to_rgb(hue, 0.75, value)) * 255 + 0.5)
-    return palette[labels]
 
 
 def parse_parameters(pairs):
@@ -53,17 +40,14 @@ def main(argv):
         os.path.splitext(os.path.basename(source))[0] + "_py_segments.pcd")
 
     cloud = o3d.t.io.read_point_cloud(source)
-    points = cloud.point.positions.numpy()  # float32, N x 3
-    if len(points) == 0:
-        sys.exit(f"{source}: no points")
-    seg = pcl_ncut_seg.Segmenter(**parse_parameters([a for a in args if "=" in a]))
     try:
-        labels = seg.segment(points)
+        seg = pcl_ncut_seg.Segmenter(**parse_parameters([a for a in args if "=" in a]))
+        labels = seg.segment(cloud)  # its positions, and its normals when it has some
     except ValueError as error:
         sys.exit(f"{source}: {error}")
 
     t = seg.num_segments
-    print(f"{source}: {len(points)} points, {seg.num_supernodes} supernodes, "
+    print(f"{source}: {seg.num_points} points, {seg.num_supernodes} supernodes, "
           f"{seg.num_refined_supernodes} after refinement, {t} segments "
           f"in {seg.phase_times['total']:.3f} s")
     sizes = np.bincount(labels, minlength=t + 1)
@@ -74,12 +58,15 @@ def main(argv):
         print(f"the input's label field: {same} of {len(labels)} points have the same label")
 
     cloud.point["label"] = o3d.core.Tensor(labels.astype(np.uint32).reshape(-1, 1))
-    cloud.point.colors = o3d.core.Tensor(segment_colors(labels))
+    # uint8 colours, as the library's getColoredCloud() (pcl_ncut_seg.colorize(cloud, labels)
+    # would give float ones)
+    cloud.point.colors = o3d.core.Tensor(pcl_ncut_seg.segment_colors(labels))
     if not o3d.t.io.write_point_cloud(target, cloud):
         sys.exit(f"could not write {target}")
     print(f"wrote {target} (label field and a colour per segment)")
     if show:
-        o3d.visualization.draw_geometries([cloud.to_legacy()], window_name=target)
+        legacy = pcl_ncut_seg.colorize(cloud.to_legacy(), labels)
+        o3d.visualization.draw_geometries([legacy], window_name=target)
 
 
 if __name__ == "__main__":

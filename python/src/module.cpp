@@ -1,7 +1,8 @@
 /*
- * pcl_ncut_seg Python module: pcl_ncut_seg.segment(points, **parameters) and the Segmenter
- * class over pcl::SupernodeNCutSegmentation<pcl::PointXYZ>. Parameters go by the names of the
- * table in pcl_ncut_seg/parameter_table.h (the tools' flags without the '-').
+ * pcl_ncut_seg Python module (pcl_ncut_seg._pcl_ncut_seg, which the package pcl_ncut_seg wraps):
+ * segment(points, normals=None, **parameters) and the Segmenter class over
+ * pcl::SupernodeNCutSegmentation<pcl::PointNormal>. Parameters go by the names of the table in
+ * pcl_ncut_seg/parameter_table.h (the tools' flags without the '-').
  */
 #include "segmenter.h"
 #include "values.h"
@@ -30,11 +31,13 @@ optional extension off (or to auto), True/False are on/off, paper=True starts fr
 to the letter instead of the project's defaults. A bad array or parameter raises ValueError
 with the library's reason. Segmenter keeps the expensive stage between calls.)doc";
 
-const char* const kSegmentDoc = R"doc(segment(points, **parameters) -> numpy.ndarray
+const char* const kSegmentDoc = R"doc(segment(points, normals=None, **parameters) -> numpy.ndarray
 
 Segment points, an (N, 3) float32 or float64 array (NaN rows allowed) or a depth image's
 (H, W, 3) points (NaN where nothing came back; an organized cloud, whose rim is known), with
 the project's defaults changed by the keyword parameters (paper=True: the paper's settings).
+normals, an array of the points' shape, are the normals CAD mode (cad=True) reads in place of
+estimating them (NaN rows: estimated).
 Returns N (or H x W) int32 labels, 1-based, 0 for points in no segment. ValueError on a bad array, no finite point or a
 bad parameter; library warnings (fewer points than k + 1, ...) are RuntimeWarnings.)doc";
 
@@ -78,23 +81,40 @@ void addParameterProperties(py::class_<Segmenter>& cls) {
   }
 }
 
+py::list shorthandList() {
+  py::list out;
+  for (const pcl_ncut_seg::Shorthand& s : pcl_ncut_seg::parameterShorthands()) {
+    py::dict d;
+    d["name"] = s.name;
+    d["parameter"] = s.parameter;
+    d["value"] = s.value;
+    d["help"] = s.help;
+    out.append(d);
+  }
+  return out;
+}
+
 } // namespace
 
-PYBIND11_MODULE(pcl_ncut_seg, m) {
+PYBIND11_MODULE(_pcl_ncut_seg, m) {
   m.doc() = kModuleDoc;
   m.attr("__version__") = PCL_NCUT_SEG_VERSION;
 
   m.def(
       "segment",
-      [](const py::object& points, const py::kwargs& parameters) {
+      [](const py::object& points, const py::object& normals, const py::kwargs& parameters) {
         Segmenter seg{py::dict()};
-        return seg.segment(points, parameters);
+        return seg.segment(points, normals, parameters);
       },
-      py::arg("points"), kSegmentDoc);
+      py::arg("points"), py::arg("normals") = py::none(), kSegmentDoc);
   m.def("parameter_table", &pcl_ncut_seg_python::parameterTableList,
         "parameter_table() -> list of dict\n\nEvery parameter: name, field, stage, "
         "analysis (whether changing it recomputes the expensive stage), kind, range, help, off "
         "(the word None stands for), choices, default, paper_value, in_paper.");
+  m.def("parameter_shorthands", &shorthandList,
+        "parameter_shorthands() -> list of dict\n\nThe keywords that stand for one parameter's "
+        "value (exact=True is centrality='exact'), as the tools' shorthand flags: name, "
+        "parameter, value, help. They take True only.");
   m.def(
       "default_parameters",
       [](bool paper) {
@@ -117,13 +137,13 @@ PYBIND11_MODULE(pcl_ncut_seg, m) {
                              "Every parameter's value, by name (a new dict).")
       .def(
           "segment",
-          [](Segmenter& s, const py::object& points, const py::kwargs& parameters) {
-            return s.segment(points, parameters);
-          },
-          py::arg("points") = py::none(),
-          "segment(points=None, **parameters) -> numpy.ndarray\n\nSet the parameters (as "
-          "set()), then segment points (None: the points of the last call, reusing the "
-          "expensive stage when only cut parameters changed). Returns N int32 labels (H x W for "
+          [](Segmenter& s, const py::object& points, const py::object& normals,
+             const py::kwargs& parameters) { return s.segment(points, normals, parameters); },
+          py::arg("points") = py::none(), py::arg("normals") = py::none(),
+          "segment(points=None, normals=None, **parameters) -> numpy.ndarray\n\nSet the "
+          "parameters (as set()), then segment points (None: the points of the last call, "
+          "reusing the expensive stage when only cut parameters changed), with their normals "
+          "for CAD mode (None: estimated). Returns N int32 labels (H x W for "
           "an (H, W, 3) image), 1-based, 0 for points in no segment.")
       .def("get_labels", &Segmenter::labels, "The labels of the last segment() (int32, N).")
       .def("get_centrality", &Segmenter::centrality,

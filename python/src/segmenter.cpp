@@ -3,9 +3,11 @@
 #include "console_capture.h"
 #include "values.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace pcl_ncut_seg_python {
@@ -19,19 +21,33 @@ std::string shapeText(const py::array& a) {
   return s + (a.ndim() == 1 ? ",)" : ")");
 }
 
-template <typename T> void fillCloud(const py::array& a, pcl::PointCloud<pcl::PointXYZ>& cloud) {
+/** \brief Copies an (N, 3) or (H, W, 3) array of T into the cloud's x, y, z (normals false) or
+ * normal_x, normal_y, normal_z (normals true), in order. */
+template <typename T>
+void fillCloud(const py::array& a, bool normals, pcl::PointCloud<pcl::PointNormal>& cloud) {
   // C-contiguous, native byte order; a copy only when the array is not already so.
   const auto data = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
   const T* p = data.data();
-  bool dense = true;
   for (std::size_t i = 0; i < cloud.size(); ++i, p += 3) {
-    pcl::PointXYZ& q = cloud[i];
-    q.x = static_cast<float>(p[0]);
-    q.y = static_cast<float>(p[1]);
-    q.z = static_cast<float>(p[2]);
-    dense = dense && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z);
+    float* q = normals ? cloud[i].normal : cloud[i].data;
+    for (int d = 0; d < 3; ++d)
+      q[d] = static_cast<float>(p[d]);
   }
-  cloud.is_dense = dense;
+}
+
+/** \brief obj as an (N, 3) or (H, W, 3) array of float32 or float64; ValueError naming what
+ * otherwise. */
+py::array floatArray(const py::handle& obj, const char* what) {
+  const py::array a = py::module_::import("numpy").attr("asarray")(obj);
+  const py::dtype dtype = a.dtype();
+  const bool is_float = dtype.kind() == 'f' && (dtype.itemsize() == 4 || dtype.itemsize() == 8);
+  // (H, W, 3): a depth image's points, an organized cloud (its rim is known, core/rim_merge.h).
+  const bool image = a.ndim() == 3 && a.shape(0) > 0 && a.shape(1) > 0 && a.shape(2) == 3;
+  if (!(image || (a.ndim() == 2 && a.shape(1) == 3)) || !is_float)
+    throw py::value_error(std::string(what) +
+                          " must be an (N, 3) or (H, W, 3) array of float32 or float64, got " +
+                          dtype.attr("name").cast<std::string>() + " of shape " + shapeText(a));
+  return a;
 }
 
 template <typename T> py::array_t<T> toArray(const std::vector<T>& v) {
@@ -54,26 +70,37 @@ struct BusyGuard {
 
 } // namespace
 
-pcl::PointCloud<pcl::PointXYZ>::Ptr cloudFromArray(const py::handle& points) {
-  const py::array a = py::module_::import("numpy").attr("asarray")(points);
-  const py::dtype dtype = a.dtype();
-  const bool is_float = dtype.kind() == 'f' && (dtype.itemsize() == 4 || dtype.itemsize() == 8);
-  // (H, W, 3): a depth image's points, an organized cloud (its rim is known, core/rim_merge.h).
-  const bool image = a.ndim() == 3 && a.shape(0) > 0 && a.shape(1) > 0 && a.shape(2) == 3;
-  if (!(image || (a.ndim() == 2 && a.shape(1) == 3)) || !is_float)
-    throw py::value_error("points must be an (N, 3) or (H, W, 3) array of float32 or float64, "
-                          "got " +
-                          dtype.attr("name").cast<std::string>() + " of shape " + shapeText(a));
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+pcl::PointCloud<pcl::PointNormal>::Ptr cloudFromArray(const py::handle& points,
+                                                      const py::handle& normals) {
+  const py::array a = floatArray(points, "points");
+  std::optional<py::array> n; // none: NaN normals
+  if (!normals.is_none()) {
+    n = floatArray(normals, "normals");
+    if (n->ndim() != a.ndim() || n->shape(0) != a.shape(0) || n->shape(1) != a.shape(1))
+      throw py::value_error("normals must have the shape of the points, " + shapeText(a) +
+                            ", got " + shapeText(*n));
+  }
+  pcl::PointCloud<pcl::PointNormal>::Ptr cloud(new pcl::PointCloud<pcl::PointNormal>);
+  const bool image = a.ndim() == 3;
   const auto height = static_cast<std::uint32_t>(image ? a.shape(0) : 1);
   const auto width = static_cast<std::uint32_t>(image ? a.shape(1) : a.shape(0));
-  cloud->resize(std::size_t(width) * height);
+  pcl::PointNormal nan_normal; // NaN normals: none given (CAD mode estimates them)
+  nan_normal.normal_x = nan_normal.normal_y = nan_normal.normal_z =
+      std::numeric_limits<float>::quiet_NaN();
+  cloud->resize(std::size_t(width) * height, nan_normal);
   cloud->width = width;
   cloud->height = height;
-  if (dtype.itemsize() == 4)
-    fillCloud<float>(a, *cloud);
+  if (a.dtype().itemsize() == 4)
+    fillCloud<float>(a, false, *cloud);
   else
-    fillCloud<double>(a, *cloud);
+    fillCloud<double>(a, false, *cloud);
+  if (n && n->dtype().itemsize() == 4)
+    fillCloud<float>(*n, true, *cloud);
+  else if (n)
+    fillCloud<double>(*n, true, *cloud);
+  cloud->is_dense = std::all_of(cloud->begin(), cloud->end(), [](const pcl::PointNormal& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  });
   return cloud;
 }
 
@@ -109,16 +136,19 @@ py::dict Segmenter::parameters() const {
   return parameterDict(seg_.getParameters());
 }
 
-py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py::dict& keywords) {
+py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py::object& normals,
+                                             const py::dict& keywords) {
   checkIdle();
   if (!points.is_none()) {
-    auto cloud = cloudFromArray(points); // before any change: bad points change nothing
+    auto cloud = cloudFromArray(points, normals); // before any change: bad points change nothing
     set(keywords);
     cloud_ = cloud;
     seg_.setInputCloud(cloud_);
   } else {
     if (!cloud_)
       throw py::value_error("no points: give an (N, 3) array of float32 or float64");
+    if (!normals.is_none())
+      throw py::value_error("normals without points: give the points they belong to");
     set(keywords);
   }
   have_result_ = false;

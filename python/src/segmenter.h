@@ -1,8 +1,8 @@
 /*
- * pcl_ncut_seg Python module: Segmenter, a pcl::SupernodeNCutSegmentation<pcl::PointXYZ> over
- * a numpy array. The PCL class does the work (the same labels, the same checks); this class
- * converts the array, the parameters and the results, and turns the library's console errors
- * into ValueError.
+ * pcl_ncut_seg Python module: Segmenter, a pcl::SupernodeNCutSegmentation<pcl::PointNormal>
+ * over a numpy array of points (and one of normals, which CAD mode reads). The PCL class does the
+ * work (the same labels, the same checks); this class converts the array, the parameters and the
+ * results, and turns the library's console errors into ValueError.
  */
 #pragma once
 
@@ -21,8 +21,10 @@ namespace pcl_ncut_seg_python {
 namespace py = pybind11;
 
 /** \brief The points of an (N, 3) float32 or float64 array (anything numpy.asarray turns into
- * one) as a cloud of N points in the same order, NaN rows kept; ValueError otherwise. */
-pcl::PointCloud<pcl::PointXYZ>::Ptr cloudFromArray(const py::handle& points);
+ * one) as a cloud of N points in the same order, NaN rows kept, with the normals of an array of
+ * the same shape (None: NaN normals, which CAD mode estimates); ValueError otherwise. */
+pcl::PointCloud<pcl::PointNormal>::Ptr cloudFromArray(const py::handle& points,
+                                                      const py::handle& normals);
 
 class Segmenter {
 public:
@@ -37,9 +39,11 @@ public:
   py::dict parameters() const;
 
   /** \brief Segment points (None: the points of the last call again) after setting the
-   * keywords; the labels, 1-based, 0 for points in no segment. Reuses the expensive stage
-   * when only cut parameters changed since the last call on the same points. */
-  py::array_t<std::int32_t> segment(const py::object& points, const py::dict& keywords);
+   * keywords, with the normals of the points (None: none); the labels, 1-based, 0 for points
+   * in no segment. Reuses the expensive stage when only cut parameters changed since the last
+   * call on the same points. */
+  py::array_t<std::int32_t> segment(const py::object& points, const py::object& normals,
+                                    const py::dict& keywords);
 
   /// Results of the last segment(); RuntimeError when there is none (no call yet, a failed
   /// one, or a change of an analysis parameter since).
@@ -68,7 +72,7 @@ public:
 
 private:
   /** \brief The PCL class, with its cut result (protected there) readable. */
-  class Seg : public pcl::SupernodeNCutSegmentation<pcl::PointXYZ> {
+  class Seg : public pcl::SupernodeNCutSegmentation<pcl::PointNormal> {
   public:
     const pcl_ncut_seg::CutResult& result() const { return result_; }
   };
@@ -77,7 +81,7 @@ private:
   void requireResult() const;
 
   Seg seg_;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_;
+  pcl::PointCloud<pcl::PointNormal>::Ptr cloud_;
   std::vector<std::int32_t> labels_;
   bool have_result_ = false;
   pcl_ncut_seg::PhaseTimes times_;
