@@ -328,6 +328,18 @@ void printReport(const Segmenter& seg, std::size_t num_segments) {
     info(noise.projected ? " (noisy: points projected onto their local planes)\n"
                          : " (no projection)\n");
   }
+  const pcl_ncut_seg::ViewTest view = seg.getViewTest();
+  info("view: ");
+  if (view.view) {
+    info("one view from ");
+    info("%s",
+         view.origin_estimated ? "a sensor position read off the points" : "the sensor origin");
+    info(", rim of ");
+    value("%zu", view.rim_points);
+    info(" points\n");
+  } else {
+    info("not a single view\n");
+  }
   if (noise.sampling_irregularity > 0.0) {
     info("spacing: irregularity ");
     value("%.3f", noise.sampling_irregularity);

@@ -253,6 +253,11 @@ public:
    * CAD mode or no analysis yet) and whether the points were projected onto their planes; and
    * (setIrregularSampling) the sampling irregularity and whether it counted as irregular. */
   pcl_ncut_seg::NoiseTest getNoiseTest() const;
+  /** \brief The last analysis' view test (graph.single_view): whether the points are one view
+   * (they have a rim, and the open-view stages ran), from which sensor position (the cloud's
+   * sensor_origin_ less the points' centroid, or one read off the points when the points are
+   * no view from sensor_origin_), and how many points lie on the rim. */
+  pcl_ncut_seg::ViewTest getViewTest() const;
   /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2). */
   const pcl_ncut_seg::Hierarchy& getHierarchy() const { return result_.hierarchy; }
   /** \brief The supernode graph G_s (Sec. 5.1). */

@@ -39,6 +39,7 @@ PROPERTIES = {
     "num_supernodes": "int",
     "num_refined_supernodes": "int",
     "noise_test": "dict[str, Any]",
+    "view_test": "dict[str, Any]",
     "phase_times": "dict[str, float]",
     "analysis_count": "int",
 }

@@ -187,6 +187,12 @@ PYBIND11_MODULE(_pcl_ncut_seg, m) {
                              "irregular_sampling parameter: about 0.45 for points drawn at "
                              "random, 0.05-0.2 for even ones; 0 when not measured) and whether "
                              "the centrality was averaged for it (irregular).")
+      .def_property_readonly("view_test", &Segmenter::viewTest,
+                             "The last analysis' view test (the single_view parameter): "
+                             "whether the points were one view (view), the sensor position "
+                             "they were seen from, relative to their centroid (origin), "
+                             "whether it was read off the points (origin_estimated), and "
+                             "the points on the view's rim (rim_points).")
       .def_property_readonly("phase_times", &Segmenter::phaseTimes,
                              "Seconds per phase of the last segment() (knn, centrality, "
                              "supernodes, refinement, hierarchy, points, total); the analysis "

@@ -315,6 +315,17 @@ py::dict Segmenter::noiseTest() const {
   return d;
 }
 
+py::dict Segmenter::viewTest() const {
+  requireResult();
+  const pcl_ncut_seg::ViewTest test = seg_.getViewTest();
+  py::dict d;
+  d["view"] = test.view;
+  d["origin_estimated"] = test.origin_estimated;
+  d["origin"] = py::make_tuple(test.origin[0], test.origin[1], test.origin[2]);
+  d["rim_points"] = test.rim_points;
+  return d;
+}
+
 py::dict Segmenter::phaseTimes() const {
   requireResult();
   py::dict d;

@@ -59,6 +59,7 @@ public:
   std::size_t numSupernodes(bool refined) const;
   /** \brief The last analysis' noise test: residual_growth and projected (core/denoise.h). */
   py::dict noiseTest() const;
+  py::dict viewTest() const;
 
   /** \brief Seconds per phase of the last segment() (Table 1's columns); the analysis phases
    * are 0 when that call reused the kept analysis. */

@@ -205,3 +205,32 @@ def test_an_image_of_points_is_an_organized_view():
 def test_a_badly_shaped_image_is_refused():
     with pytest.raises(ValueError, match=r"\(H, W, 3\)"):
         pcl_ncut_seg.segment(np.zeros((4, 5, 2), np.float32))
+
+
+def test_the_view_test_is_reported():
+    # The near side of a ball as a camera 1 unit in front of its centre sees it (one point per
+    # ray of a grid), handed over as numpy points with no sensor position.
+    u, v = np.meshgrid(np.linspace(-0.35, 0.35, 90), np.linspace(-0.35, 0.35, 90))
+    rays = np.stack([u.ravel(), v.ravel(), np.ones(u.size)], axis=1)
+    rays /= np.linalg.norm(rays, axis=1, keepdims=True)
+    b = rays[:, 2]  # the ray's component towards the centre (0, 0, 1)
+    disc = b * b - 1.0 + 0.3**2
+    hit = disc > 0
+    t = b[hit] - np.sqrt(disc[hit])
+    cap = rays[hit] * t[:, None]
+    cap -= cap.mean(axis=0)  # in its own frame: the origin says nothing of the camera
+    seg = pcl_ncut_seg.Segmenter()
+    seg.segment(cap)
+    view = seg.view_test
+    assert view["view"] is True and view["origin_estimated"] is True
+    assert view["rim_points"] > 0
+    # The sensor was found in front of the cap, towards the camera (-z from its points).
+    assert view["origin"][2] < 0
+    # A closed surface (a sphere on a Fibonacci lattice) is no view.
+    i = np.arange(4000) + 0.5
+    z = 1 - 2 * i / 4000
+    phi = np.pi * (1 + 5**0.5) * i
+    r = np.sqrt(1 - z * z)
+    ball = pcl_ncut_seg.Segmenter()
+    ball.segment(np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1))
+    assert ball.view_test["view"] is False

@@ -146,9 +146,26 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                               !params.cad.enabled, params.execution.num_threads, &noise);
   std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
   const CutNeeds needs = cutNeeds(params);
-  if (!params.cad.enabled && params.graph.single_view && points.rim.empty() && points.sensor_origin)
-    points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
-                               params.execution.num_threads);
+  ViewTest view;
+  if (!params.cad.enabled && params.graph.single_view && points.rim.empty()) {
+    if (points.sensor_origin && couldBeSensor(points.xyz.data(), n, points.sensor_origin->data()))
+      points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
+                                 params.execution.num_threads);
+    // No view from the given origin (or none given): perhaps one from elsewhere, the origin
+    // left at 0 in another frame.
+    if (points.rim.empty())
+      if (auto origin = estimateViewOrigin(graph, points.xyz.data(), params.execution.num_threads,
+                                           &points.rim)) {
+        points.sensor_origin = origin;
+        view.origin_estimated = true;
+      }
+  }
+  if (!points.rim.empty()) {
+    view.view = true;
+    view.origin = *points.sensor_origin;
+    view.rim_points =
+        static_cast<std::size_t>(std::count(points.rim.begin(), points.rim.end(), std::uint8_t{1}));
+  }
   // Ties and the sampling's start by distance from the centroid of each connected component:
   // the same for any order of the points, and a far outlier moves no other component's start.
   std::vector<std::uint32_t> component;
@@ -177,9 +194,11 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   }
   a.order = std::move(points.order);
   a.noise = noise;
+  a.view = view;
   for (Analysis& other : a.other_starts) {
     other.order = a.order;
     other.noise = noise;
+    other.view = view;
   }
   return a;
 }

@@ -10,7 +10,9 @@
  *   [ext]   denoise             noise detected and projected out (core/denoise.h)
  *   [ext]   irregular_sampling  random sampling detected; f averaged (core/denoise.h)
  *   [ext]   bridge_gap          components joined across sampling gaps (core/bridging.h)
- *   [ext]   single_view         an unorganized view's rim from its sensor (core/single_view.h)
+ *   [ext]   single_view         a view's rim from its sensor origin, or from a sensor
+ *                               position read off the points (core/single_view.h,
+ *                               core/view_origin.h)
  *   [paper] centrality f        Sec. 4.1, eq. (1); [ext] centrality=fast on a coarse graph
  *                               (core/coarse_centrality.h), [ext] starts (core/starts.h)
  *   [paper] supernodes          Sec. 4.2, gradient flow with saddles
@@ -37,6 +39,7 @@
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
 #include <pcl_ncut_seg/core/supernodes.h>
+#include <pcl_ncut_seg/core/view_origin.h>
 #include <pcl_ncut_seg/parameters.h>
 
 #include <array>
@@ -105,6 +108,7 @@ struct Analysis {
   bool has_crease = false;
   std::vector<std::uint32_t> order; ///< PointSet::order
   NoiseTest noise;                  ///< the graph stage's noise test (core/denoise.h)
+  ViewTest view;                    ///< whether the points are one view (core/view_origin.h)
   std::vector<std::uint8_t> rim;    ///< PointSet::rim
   /// The points and their oriented normals, kept when there is a rim and the cut's rim merge
   /// fits planes to the sides of boundaries (core/rim_merge.h).

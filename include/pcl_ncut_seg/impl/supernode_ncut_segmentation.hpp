@@ -422,5 +422,10 @@ pcl_ncut_seg::NoiseTest pcl::SupernodeNCutSegmentation<PointT>::getNoiseTest() c
   return analysis_ ? analysis_->noise : pcl_ncut_seg::NoiseTest{};
 }
 
+template <typename PointT>
+pcl_ncut_seg::ViewTest pcl::SupernodeNCutSegmentation<PointT>::getViewTest() const {
+  return analysis_ ? analysis_->view : pcl_ncut_seg::ViewTest{};
+}
+
 #define PCL_INSTANTIATE_SupernodeNCutSegmentation(T)                                               \
   template class PCL_EXPORTS pcl::SupernodeNCutSegmentation<T>;
