@@ -320,16 +320,14 @@ std::vector<std::uint32_t> cellKeys(const std::vector<float>& uv, double h) {
 }
 
 /// Rule 1b: whether more than 2% of the occupied cells hold two layers: two points inside their
-/// layers (inside_edge >= 0) whose ranges differ by more than kLayerGap of their edge lengths;
-/// or more than 2% of the points lie so far behind their cell's nearest. A surface seen through
-/// another has such cells all over; a long part hidden behind another (a table's legs under its
-/// top) fills a few cells with many points. Where one surface of a view hides
+/// layers (inside_edge >= 0) whose ranges differ by more than kLayerGap of their edge lengths.
+/// A surface seen through another has such cells all over. Where one surface of a view hides
 /// another, both end (rim), and points inside them, a graph step or more in on either side, lie
 /// farther apart across the image than a cell spans.
 bool twoLayered(const Rays& rays, const std::vector<float>& inside_edge,
                 const std::vector<std::uint32_t>& key) {
   const std::vector<std::uint32_t> order = stableOrderByKey(key);
-  std::size_t occupied = 0, layered = 0, hidden = 0;
+  std::size_t occupied = 0, layered = 0;
   for (std::size_t begin = 0, end = 0; begin < order.size(); begin = end, ++occupied) {
     std::uint32_t nearest = order[begin], farthest = order[begin];
     bool any = false;
@@ -343,19 +341,11 @@ bool twoLayered(const Rays& rays, const std::vector<float>& inside_edge,
         farthest = p;
       any = true;
     }
-    if (!any || !(rays.range[farthest] - rays.range[nearest] >
-                  kLayerGap * std::max(inside_edge[nearest], inside_edge[farthest])))
-      continue;
-    ++layered;
-    for (std::size_t i = begin; i < end; ++i) {
-      const std::uint32_t p = order[i];
-      hidden +=
-          inside_edge[p] >= 0.0f && rays.range[p] - rays.range[nearest] >
-                                        kLayerGap * std::max(inside_edge[nearest], inside_edge[p]);
-    }
+    if (any && rays.range[farthest] - rays.range[nearest] >
+                   kLayerGap * std::max(inside_edge[nearest], inside_edge[farthest]))
+      ++layered;
   }
-  return layered > kMaxLayeredFraction * occupied ||
-         hidden > kMaxLayeredFraction * static_cast<double>(order.size());
+  return layered > kMaxLayeredFraction * occupied;
 }
 
 } // namespace

@@ -24,8 +24,7 @@ namespace pcl_ncut_seg {
  * in the image plane across the mean direction, cells of about a point spacing there; at most
  * 2% of the occupied cells may hold two points inside their layers (they and their graph
  * neighbours off the rim) whose ranges differ by more than 5 times their mean graph edge
- * length, a surface seen through another; and at most 2% of the points may lie that far behind
- * their cell's nearest (a long part hidden behind another fills few cells with many points). Both layers end where one hides the other, so a
+ * length, a surface seen through another. Both layers end where one hides the other, so a
  * depth image with occlusions is one view and a closed surface seen from outside is not.
  *
  * Rim: the vertex's graph neighbours, projected along its ray onto the plane across it (the
