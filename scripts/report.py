@@ -5,6 +5,8 @@ the people; and, for every run named off-<stage>, what turning that stage off ch
 
     python3 scripts/report.py OUT results/report.md
 
+REPORT_TITLE replaces the title, for a report of some of the inputs (results/views_unknown_origin.md:
+REPORT_TITLE="Views with the sensor origin unknown", from report.sh with INPUTS=views_unknown_origin).
 OUT holds <config>/<input>/models.csv (the evaluator's) and <config>/<input>/command.
 """
 import csv
@@ -125,7 +127,7 @@ def run_build(out, config, folder):
 
 
 def header(out, configs, md):
-    md.append("# Every kind of input, every stage\n")
+    md.append("# " + os.environ.get("REPORT_TITLE", "Every kind of input, every stage") + "\n")
     md.append(f"Written by `scripts/report.py` on {datetime.date.today()} from the runs in "
               f"`{out}`; build {build()}; machine: {machine()}. The evaluator's commands:\n")
     md.append("```")

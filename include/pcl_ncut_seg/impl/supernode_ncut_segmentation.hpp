@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
@@ -270,6 +271,28 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
     segments[result_.point_segment[d.second]].indices.push_back(d.first);
   for (auto& s : segments)
     std::sort(s.indices.begin(), s.indices.end());
+  // The cut numbers segments by their first analysed point; a point carried to its nearest
+  // analysed one (max_points) can come earlier. Renumber by the smallest point index, in
+  // the result too, so that labels and colours agree with the order of the segments.
+  std::vector<std::uint32_t> order(segments.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&segments](std::uint32_t a, std::uint32_t b) {
+    return segments[a].indices.front() < segments[b].indices.front();
+  });
+  if (!std::is_sorted(order.begin(), order.end())) {
+    std::vector<std::uint32_t> rank(order.size());
+    std::vector<pcl::PointIndices> sorted(order.size());
+    for (std::size_t r = 0; r < order.size(); ++r) {
+      rank[order[r]] = static_cast<std::uint32_t>(r);
+      sorted[r] = std::move(segments[order[r]]);
+    }
+    segments = std::move(sorted);
+    for (std::uint32_t& label : result_.point_segment)
+      label = rank[label];
+    for (std::uint32_t& label : result_.supernode_segment)
+      if (label < rank.size())
+        label = rank[label];
+  }
   for (auto& s : segments)
     s.header = input_->header;
   have_result_ = true;

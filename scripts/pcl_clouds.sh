@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# What the tool gives on each of PCL's test clouds (../shared/data/pcl): points, segments,
+# whether the cloud counted as one view, and the whole process' wall time, with the defaults;
+# written to results/pcl_clouds.md (atomically) with the command, the build and the machine.
+#
+#   bash scripts/pcl_clouds.sh [OUT.md]
+#
+# Environment: DATA (default ../shared/data/pcl), TOOL (default build/tools/pcl_ncut_seg).
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+DATA="${DATA:-$ROOT/../shared/data/pcl}"
+TOOL="${TOOL:-$ROOT/build/tools/pcl_ncut_seg}"
+OUT="${1:-$ROOT/results/pcl_clouds.md}"
+[ -d "$DATA" ] || { echo "pcl_clouds.sh: no PCL test clouds at $DATA" >&2; exit 1; }
+[ -x "$TOOL" ] || { echo "pcl_clouds.sh: no tool at $TOOL (build it first)" >&2; exit 1; }
+
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+{
+  echo "# PCL's test clouds"
+  echo
+  echo "Written by \`scripts/pcl_clouds.sh\` on $(date -u +%Y-%m-%d) with \`$(basename "$TOOL") CLOUD OUT.pcd\`" \
+    "(the defaults); build $(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo unknown);" \
+    "machine: $(nproc) cores, $(uname -sr). Time: the whole process (read, segment, write), wall seconds."
+  echo
+  echo "| cloud | points | analysed | segments | view | seconds |"
+  echo "|---|---|---|---|---|---|"
+  for cloud in "$DATA"/*.pcd; do
+    name="$(basename "$cloud")"
+    start=$(date +%s.%N)
+    if ! "$TOOL" "$cloud" "$WORK/out.pcd" > "$WORK/log" 2>&1; then
+      echo "| $name | | | failed: $(tail -n 1 "$WORK/log") | | |"
+      continue
+    fi
+    end=$(date +%s.%N)
+    points="$(sed -n 's/^POINTS \([0-9]*\).*/\1/p' "$WORK/out.pcd" | head -n 1)"
+    analysed="$(sed -n 's/^n *: \([0-9]*\) points analysed.*/\1/p' "$WORK/log")"
+    segments="$(sed -n 's/^t *: \([0-9]*\) segments.*/\1/p' "$WORK/log")"
+    view="$(sed -n 's/^view: //p' "$WORK/log")"
+    printf '| %s | %s | %s | %s | %s | %.2f |\n' "$name" "$points" "$analysed" "$segments" \
+      "$view" "$(awk "BEGIN { print $end - $start }")"
+  done
+} > "$WORK/table.md"
+mkdir -p "$(dirname "$OUT")"
+cp "$WORK/table.md" "$OUT.tmp" && mv "$OUT.tmp" "$OUT"
+echo "pcl_clouds.sh: wrote $OUT"
