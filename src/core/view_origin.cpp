@@ -1,5 +1,6 @@
 // The sensor position of a view read off its points (see core/view_origin.h).
 #include <pcl_ncut_seg/core/single_view.h>
+#include <pcl_ncut_seg/core/threads.h>
 #include <pcl_ncut_seg/core/view_origin.h>
 
 #include <Eigen/Eigenvalues>
@@ -37,10 +38,40 @@ Eigen::Vector3d point(const float* xyz, std::uint32_t v) {
   return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
 }
 
-/// The widest angular gap between the bearings of the points (around p, across normal).
+/// The sector of the bearing (a, b) != 0 as a bit: 16 sectors of 22.5 degrees, in some fixed
+/// order around the circle (neighbouring sectors on neighbouring bits, cyclically).
+unsigned sectorBit(double a, double b) {
+  const double x = std::abs(a), y = std::abs(b);
+  // Within the quadrant, 0-3 counter-clockwise from the axis of a (by tan 22.5 degrees).
+  const double lo = std::min(x, y), hi = std::max(x, y);
+  const int half = lo < 0.41421356237309503 * hi ? 0 : 1;
+  const int in_quadrant = x >= y ? half : 3 - half;
+  const int quadrant = b >= 0.0 ? (a >= 0.0 ? 0 : 1) : (a < 0.0 ? 2 : 3);
+  // Quadrants 1 and 3 run from the axis of b: mirror their order.
+  const int sector = quadrant % 2 == 0 ? in_quadrant : 3 - in_quadrant;
+  return 1u << (4 * quadrant + sector);
+}
+
+/// Whether three neighbouring sectors are empty: a gap above 90 degrees spans at least that.
+bool threeEmpty(unsigned used) {
+  const unsigned empty = ~used & 0xffffu, twice = empty | empty << 16;
+  return (twice & twice >> 1 & twice >> 2 & 0xffffu) != 0;
+}
+
+/// The widest angular gap between the bearings of the points (around p, across normal); 0
+/// when it surely is at most 90 degrees (no three neighbouring sectors of 16 are empty).
 double widestGap(const Eigen::Vector3d& p, const Eigen::Vector3d& normal,
                  const std::vector<Eigen::Vector3d>& points, std::vector<double>& angles) {
   const Eigen::Vector3d u = normal.unitOrthogonal(), w = normal.cross(u);
+  unsigned used = 0;
+  for (const Eigen::Vector3d& q : points) {
+    const Eigen::Vector3d d = q - p;
+    const double a = d.dot(u), b = d.dot(w);
+    if (a != 0.0 || b != 0.0)
+      used |= sectorBit(a, b);
+  }
+  if (!threeEmpty(used))
+    return 0.0;
   angles.clear();
   for (const Eigen::Vector3d& q : points) {
     const Eigen::Vector3d d = q - p;
@@ -78,28 +109,38 @@ bool leavesGap(const CsrGraph& graph, const float* xyz, std::uint32_t v,
   return widestGap(p, normal, ring, angles) > kBoundaryGap;
 }
 
+/// Rule of boundaryPoints() at v.
+std::uint8_t isBoundary(const CsrGraph& graph, const float* xyz, std::uint32_t v,
+                        std::vector<Eigen::Vector3d>& ring, std::vector<double>& angles) {
+  if (graph.degree(v) < 3)
+    return 0;
+  Eigen::Vector3d mean = point(xyz, v);
+  for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
+    mean += point(xyz, graph.targets[e]);
+  mean /= static_cast<double>(graph.degree(v) + 1);
+  Eigen::Matrix3d cov = (point(xyz, v) - mean) * (point(xyz, v) - mean).transpose();
+  for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+    const Eigen::Vector3d d = point(xyz, graph.targets[e]) - mean;
+    cov += d * d.transpose();
+  }
+  Eigen::Vector3d normal;
+  return planeNormal(cov, normal) && leavesGap(graph, xyz, v, normal, ring, angles) ? 1 : 0;
+}
+
 } // namespace
 
-std::vector<std::uint8_t> boundaryPoints(const CsrGraph& graph, const float* xyz) {
-  const std::size_t n = graph.numVertices();
-  std::vector<std::uint8_t> boundary(n, 0);
-  std::vector<double> angles;
-  std::vector<Eigen::Vector3d> ring;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    if (graph.degree(v) < 3)
-      continue;
-    Eigen::Vector3d mean = point(xyz, v);
-    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
-      mean += point(xyz, graph.targets[e]);
-    mean /= static_cast<double>(graph.degree(v) + 1);
-    Eigen::Matrix3d cov = (point(xyz, v) - mean) * (point(xyz, v) - mean).transpose();
-    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
-      const Eigen::Vector3d d = point(xyz, graph.targets[e]) - mean;
-      cov += d * d.transpose();
-    }
-    Eigen::Vector3d normal;
-    if (planeNormal(cov, normal))
-      boundary[v] = leavesGap(graph, xyz, v, normal, ring, angles) ? 1 : 0;
+std::vector<std::uint8_t> boundaryPoints(const CsrGraph& graph, const float* xyz,
+                                         unsigned num_threads) {
+  const auto sn = static_cast<std::int64_t>(graph.numVertices());
+  std::vector<std::uint8_t> boundary(graph.numVertices(), 0);
+  const int threads = usableThreads(num_threads);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<double> angles;
+    std::vector<Eigen::Vector3d> ring;
+#pragma omp for schedule(static, 1024)
+    for (std::int64_t i = 0; i < sn; ++i)
+      boundary[i] = isBoundary(graph, xyz, static_cast<std::uint32_t>(i), ring, angles);
   }
   return boundary;
 }
@@ -127,7 +168,7 @@ std::optional<std::array<float, 3>> estimateViewOrigin(const CsrGraph& graph, co
     return std::nullopt;
   // A rim is a curve: its points have rim neighbours on either side. A point alone among
   // inside points is a gap of an irregular sampling, not a rim.
-  const std::vector<std::uint8_t> gap = boundaryPoints(graph, xyz);
+  const std::vector<std::uint8_t> gap = boundaryPoints(graph, xyz, num_threads);
   std::vector<std::uint8_t> boundary(n, 0);
   for (std::uint32_t v = 0; v < n; ++v) {
     int along = 0;

@@ -27,11 +27,15 @@ struct ViewTest {
 /** \brief Boundary points found from the points alone: a vertex whose graph neighbours,
  * projected onto the least-squares plane of its 1-ring, leave an angular gap above pi / 2
  * (pcl::BoundaryEstimation's test, with the 1-ring's plane for the normal). A vertex with
- * fewer than 3 neighbours or a degenerate 1-ring is no boundary point.
- * \param[in] graph  the symmetric kNN graph
- * \param[in] xyz    3 floats per vertex
+ * fewer than 3 neighbours or a degenerate 1-ring is no boundary point. A gap above pi / 2 must
+ * also be left by the 2-ring's points (ten neighbours drawn at random leave one about two times
+ * in three).
+ * \param[in] graph        the symmetric kNN graph
+ * \param[in] xyz          3 floats per vertex
+ * \param[in] num_threads  0 = all cores; the result does not depend on it
  * \return per vertex 1 on a boundary, 0 inside */
-std::vector<std::uint8_t> boundaryPoints(const CsrGraph& graph, const float* xyz);
+std::vector<std::uint8_t> boundaryPoints(const CsrGraph& graph, const float* xyz,
+                                         unsigned num_threads = 0);
 
 /** \brief Whether a sensor at origin could have seen all the points: it is at least half their
  * bounding-box diagonal from their centroid. A sensor with a field of view of 60 degrees must
