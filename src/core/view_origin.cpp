@@ -38,6 +38,22 @@ Eigen::Vector3d point(const float* xyz, std::uint32_t v) {
   return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
 }
 
+/// The points' centroid and bounding-box diagonal (n > 0).
+struct Extent {
+  Eigen::Vector3d centroid;
+  double diagonal;
+};
+Extent extentOf(const float* xyz, std::size_t n) {
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), lo = point(xyz, 0), hi = lo;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    const Eigen::Vector3d p = point(xyz, v);
+    centroid += p;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {centroid / static_cast<double>(n), (hi - lo).norm()};
+}
+
 /// The sector of the bearing (a, b) != 0 as a bit: 16 sectors of 22.5 degrees, in some fixed
 /// order around the circle (neighbouring sectors on neighbouring bits, cyclically).
 unsigned sectorBit(double a, double b) {
@@ -148,16 +164,9 @@ std::vector<std::uint8_t> boundaryPoints(const CsrGraph& graph, const float* xyz
 bool couldBeSensor(const float* xyz, std::size_t n, const float origin[3]) {
   if (n == 0)
     return false;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), lo = point(xyz, 0), hi = lo;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    const Eigen::Vector3d p = point(xyz, v);
-    centroid += p;
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  centroid /= static_cast<double>(n);
+  const Extent extent = extentOf(xyz, n);
   const Eigen::Vector3d o(origin[0], origin[1], origin[2]);
-  return (o - centroid).norm() >= kMinSensorDiagonals * (hi - lo).norm();
+  return (o - extent.centroid).norm() >= kMinSensorDiagonals * extent.diagonal;
 }
 
 std::optional<std::array<float, 3>> estimateViewOrigin(const CsrGraph& graph, const float* xyz,
@@ -177,23 +186,18 @@ std::optional<std::array<float, 3>> estimateViewOrigin(const CsrGraph& graph, co
     boundary[v] = along >= 2;
   }
   std::size_t m = 0;
-  Eigen::Vector3d rim_mean = Eigen::Vector3d::Zero(), centroid = Eigen::Vector3d::Zero();
-  Eigen::Vector3d lo = point(xyz, 0), hi = lo;
-  for (std::uint32_t v = 0; v < n; ++v) {
-    const Eigen::Vector3d p = point(xyz, v);
-    centroid += p;
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+  Eigen::Vector3d rim_mean = Eigen::Vector3d::Zero();
+  for (std::uint32_t v = 0; v < n; ++v)
     if (boundary[v]) {
-      rim_mean += p;
+      rim_mean += point(xyz, v);
       ++m;
     }
-  }
   // A view's rim runs around it: about 3.5 sqrt(n) points around a disc of n points, and even
   // where the sampling thins out towards a silhouette, more than sqrt(n).
   if (static_cast<double>(m) < std::sqrt(static_cast<double>(n)) || m < 3)
     return std::nullopt;
-  centroid /= static_cast<double>(n);
+  const Extent extent = extentOf(xyz, n);
+  const Eigen::Vector3d& centroid = extent.centroid;
   rim_mean /= static_cast<double>(m);
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (std::uint32_t v = 0; v < n; ++v)
@@ -212,7 +216,7 @@ std::optional<std::array<float, 3>> estimateViewOrigin(const CsrGraph& graph, co
   axis.cwiseAbs().maxCoeff(&largest);
   if (bulge < 0.0 || (bulge == 0.0 && axis(largest) < 0.0))
     axis = -axis;
-  const double reach = kOriginDiagonals * (hi - lo).norm();
+  const double reach = kOriginDiagonals * extent.diagonal;
   for (const double side : {1.0, -1.0}) {
     const Eigen::Vector3d o = centroid + side * reach * axis;
     const float origin[3] = {static_cast<float>(o(0)), static_cast<float>(o(1)),
