@@ -7,8 +7,9 @@
  *      direction at the distance that gives it about 20,000 valid pixels;
  *  (b) a full frame: the same bunny standing on a table that fills the whole image, seen from
  *      1 m, 60 degrees down: every pixel valid.
- * Ours runs with the defaults on the organized cloud (NaNs included), on one thread and on all
- * cores; LCCP as the evaluator runs it (tools/psb_peers.h: normals towards the sensor,
+ * Ours runs with the defaults on the organized cloud (NaNs included) and on its valid points
+ * alone (unorganized, sensor origin kept: the crop a tabletop pipeline hands over), on one
+ * thread and on all cores; LCCP as the evaluator runs it (tools/psb_peers.h: normals towards the sensor,
  * supervoxels, LCCP) with the resolutions of PCL's LCCP tutorial (voxels of 7.5 mm, seeds of
  * 3 cm), on the valid points. Prints the wall time of each (the median of 5 runs); skips when
  * the data is absent.
@@ -100,16 +101,36 @@ struct Seconds {
   double wall = 0, cpu = 0;
 };
 
-/** Ours with the defaults on the organized cloud (with `organized`: its neighbours from
- * pcl::search::OrganizedNeighbor instead of the default kd-tree); the segments through
- * *segments, the phases through *phases. */
+/** How the view reaches ours. */
+enum class Form {
+  kFrame,     ///< the organized cloud, NaNs included, with the default kd-tree
+  kOrganized, ///< the same with pcl::search::OrganizedNeighbor given to setSearchMethod()
+  kCrop       ///< its valid points, unorganized, with the sensor origin (a tabletop pipeline's)
+};
+
+/** The cloud ours gets in `form`. */
+pcl::PointCloud<pcl::PointXYZ>::Ptr cloudOf(const pcl_ncut_seg::DepthView& view, Form form) {
+  auto cloud = pcl_ncut_seg::toPclCloud(view);
+  if (form != Form::kCrop)
+    return cloud;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr crop(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : cloud->points)
+    if (std::isfinite(p.x))
+      crop->push_back(p);
+  crop->sensor_origin_ = cloud->sensor_origin_;
+  crop->sensor_orientation_ = cloud->sensor_orientation_;
+  return crop;
+}
+
+/** Ours with the defaults on the view in `form`; the segments through *segments, the phases
+ * through *phases. */
 Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::size_t* segments,
-                 pcl_ncut_seg::PhaseTimes* phases = nullptr, bool organized = false) {
+                 pcl_ncut_seg::PhaseTimes* phases, Form form) {
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  seg.setInputCloud(pcl_ncut_seg::toPclCloud(view));
+  seg.setInputCloud(cloudOf(view, form));
   seg.setParameters(g_params);
   seg.setNumberOfThreads(threads);
-  if (organized)
+  if (form == Form::kOrganized)
     seg.setSearchMethod(pcl::search::Search<pcl::PointXYZ>::Ptr(
         new pcl::search::OrganizedNeighbor<pcl::PointXYZ>()));
   std::vector<pcl::PointIndices> out;
@@ -176,12 +197,12 @@ struct OursRun {
   std::size_t segments = 0;
   pcl_ncut_seg::PhaseTimes phases;
 };
-OursRun medianOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, bool organized) {
+OursRun medianOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, Form form) {
   std::vector<std::pair<double, pcl_ncut_seg::PhaseTimes>> runs;
   OursRun r;
   r.time = medianRun([&] {
     pcl_ncut_seg::PhaseTimes t;
-    const Seconds s = timeOurs(view, threads, &r.segments, &t, organized);
+    const Seconds s = timeOurs(view, threads, &r.segments, &t, form);
     runs.emplace_back(s.wall, t);
     return s;
   });
@@ -191,17 +212,27 @@ OursRun medianOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, bool o
   return r;
 }
 
+/** One row: ours on one thread and on all cores, beside LCCP on the same valid points. */
+void printRow(const char* name, std::size_t points, const OursRun& one, const OursRun& all,
+              unsigned cores, const Seconds& lccp, std::size_t lccp_segments) {
+  std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name, points,
+              one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall, lccp.cpu,
+              one.segments, lccp_segments);
+}
+
 void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
-  const OursRun one = medianOurs(view, 1, false), all = medianOurs(view, 0, false);
+  const OursRun one = medianOurs(view, 1, Form::kFrame), all = medianOurs(view, 0, Form::kFrame);
   std::size_t lccp_segments = 0;
   const Seconds lccp = medianRun([&] { return timeLccp(view, &lccp_segments); });
-  const OursRun grid = medianOurs(view, 1, true);
-  std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name,
-              view.validPixels(), one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall,
-              lccp.cpu, one.segments, lccp_segments);
+  const OursRun grid = medianOurs(view, 1, Form::kOrganized);
+  const OursRun crop_one = medianOurs(view, 1, Form::kCrop),
+                crop_all = medianOurs(view, 0, Form::kCrop);
+  printRow(name, view.validPixels(), one, all, cores, lccp, lccp_segments);
+  printRow("    its crop (unorganized)", view.validPixels(), crop_one, crop_all, cores, lccp, lccp_segments);
   printPhases("ours, 1 thread:", one.phases, one.segments);
   printPhases("ours, all cores:", all.phases, all.segments);
   printPhases("ours, OrganizedNeighbor search:", grid.phases, grid.segments);
+  printPhases("ours, the crop, 1 thread:", crop_one.phases, crop_one.segments);
 }
 
 } // namespace
@@ -247,11 +278,13 @@ int main(int argc, char** argv) {
   measure(label, object, cores);
   measure("(b) bunny on a table, full frame", frame, cores);
   std::printf("Seconds, wall / CPU, of the run of median wall time among %d (ours on all n\n"
-              "cores: wall). Ours with the defaults on the organized cloud; LCCP: PCL's normals,\n"
-              "supervoxels (7.5 mm voxels, 3 cm seeds) and LCCP on the valid points (one thread).\n"
-              "Segments: distinct labels. Below each cloud, ours' phases (wall seconds) on one\n"
-              "thread and on all cores with the default kd-tree, and on one thread with\n"
-              "pcl::search::OrganizedNeighbor given to setSearchMethod().\n",
+              "cores: wall). Ours with the defaults on the organized cloud, then on its valid\n"
+              "points alone (unorganized, sensor origin kept: a tabletop pipeline's crop); LCCP:\n"
+              "PCL's normals, supervoxels (7.5 mm voxels, 3 cm seeds) and LCCP on the valid\n"
+              "points (one thread). Segments: distinct labels. Below each cloud, ours' phases\n"
+              "(wall seconds) on one thread and on all cores with the default kd-tree, on one\n"
+              "thread with pcl::search::OrganizedNeighbor given to setSearchMethod(), and on the\n"
+              "crop on one thread.\n",
               kRuns);
   return 0;
 }

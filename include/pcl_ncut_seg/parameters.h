@@ -154,7 +154,9 @@ struct BoundaryParams {
   /// reaches the view's rim, are merged when the planes of the boundary's two sides (each its
   /// points within half the width of the smallest part, 1% of the object's feature area, of
   /// the other side) meet at a concave angle below this many degrees (PCL's LCCP calls 10
-  /// degrees convex) and the boundary is no limb's neck. Off: the paper.
+  /// degrees convex) and the boundary is no limb's neck; then a segment smaller than the paper's
+  /// small part (1% of the object's area, twice the view's) joins the neighbour it shares most
+  /// kNN edges with, unless a limb's neck holds it (core/small_segments.h). Off: the paper.
   std::optional<double> rim_merge = 10.0;
 };
 

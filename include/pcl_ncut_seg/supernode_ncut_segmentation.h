@@ -189,8 +189,10 @@ public:
   std::optional<double> getBoundaryBand() const { return params_.boundary.band; }
   /** \brief Open views (core/rim_merge.h): on one view from the sensor origin, two touching
    * segments, one of which reaches the view's rim, are merged when the planes of their boundary's
-   * two sides meet at a concave angle below this and the boundary is no limb's neck. \param[in]
-   * degrees  boundary.rim_merge, in (0, 180]; std::nullopt: off */
+   * two sides meet at a concave angle below this and the boundary is no limb's neck; then a
+   * segment smaller than 1% of the object's area (twice the view's) joins its neighbour unless
+   * a limb's neck holds it. \param[in] degrees  boundary.rim_merge, in (0, 180]; std::nullopt:
+   * off */
   void setRimMerge(std::optional<double> degrees);
   std::optional<double> getRimMerge() const { return params_.boundary.rim_merge; }
   /** \param[in] concavity  refinement.crease_split, > 0; std::nullopt: off */

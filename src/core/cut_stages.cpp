@@ -5,6 +5,7 @@
 #include <pcl_ncut_seg/core/refinement.h>
 #include <pcl_ncut_seg/core/rim_merge.h>
 #include <pcl_ncut_seg/core/short_cut.h>
+#include <pcl_ncut_seg/core/small_segments.h>
 
 #include <algorithm>
 #include <cmath>
@@ -98,6 +99,17 @@ void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];
+  // A piece the rim or an occlusion left of a part: smaller than the paper's small part of the
+  // object (whose area is at least twice the view's) and held by no limb's neck.
+  std::vector<double> area(a.radii.size());
+  for (std::size_t p = 0; p < area.size(); ++p)
+    area[p] = pointArea(a.radii[p]);
+  const std::vector<std::uint32_t> joined =
+      joinSmallSegments(*a.graph, area, kSmallPart * 2.0 * viewArea(a.radii), kLimbNeck,
+                        r.point_segment, r.num_segments);
+  for (auto& s : r.supernode_segment)
+    if (s < joined.size())
+      s = joined[s];
 }
 
 void numberSegments(const std::vector<std::uint32_t>& order, CutResult& r) {

@@ -220,7 +220,9 @@ void boundaryRows(Rows& t) {
           "touching segments, one reaching the view's rim, when the planes of the boundary's "
           "two sides (each its points within half the width of a part of 1% of the object's "
           "feature area) meet at a concave angle below DEG degrees and its neck is "
-          "at least sqrt(pi) (no limb's); not in CAD mode",
+          "at least sqrt(pi) (no limb's); then a segment below 1% of the object's area "
+          "(twice the view's) joins its neighbour unless a limb's neck holds it; not in CAD "
+          "mode",
           false),
       leftOpen(0, 180), FIELD(boundary.rim_merge), "off"));
 }

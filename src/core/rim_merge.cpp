@@ -17,10 +17,6 @@ namespace pcl_ncut_seg {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-// The neck (core/short_cut.h) of a limb as long as it is wide, cut at its base: a tube of
-// radius a and length 2a has 2 pi a / sqrt(2 pi a 2a) = sqrt(pi). A piece chipped off at the
-// rim has a wider one (a half disc: sqrt(2 pi)); a limb a narrower one.
-const double kLimbNeck = std::sqrt(kPi);
 
 /// Moments of one side of a boundary: enough to fit its plane, and to add up when segments
 /// merge.

@@ -35,7 +35,9 @@ void boundaryStage(const Analysis& analysis, const BoundaryParams& params, CutRe
 double rimBandWidth(const std::vector<float>& radii);
 
 /** \brief Rim stage (extension, open views): merge segments that only the view's rim cut
- * apart (core/rim_merge.h). No effect in CAD mode, with rim_merge off or without a rim. */
+ * apart (core/rim_merge.h), then join the pieces smaller than the paper's small part that no
+ * limb's neck holds (core/small_segments.h). No effect in CAD mode, with rim_merge off or
+ * without a rim. */
 void rimStage(const Analysis& analysis, const BoundaryParams& params, CutResult& result);
 
 /** \brief Renumber the segments in order of their first vertex in order (empty: by vertex). */

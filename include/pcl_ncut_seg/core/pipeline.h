@@ -27,7 +27,8 @@
  *                               (core/short_cut.h), count
  *   [paper] point segments      footnote 6
  *   [ext]   boundary_band       point-level boundaries by minimum cuts (core/boundary_refinement.h)
- *   [ext]   rim_merge           open views: pieces the rim cut off merged (core/rim_merge.h)
+ *   [ext]   rim_merge           open views: pieces the rim cut off merged (core/rim_merge.h),
+ *                               then pieces below the paper's small part (core/small_segments.h)
  *   [ext]   starts              the medoid of the starts' segmentations (core/starts.h)
  * segmentPoints() does everything from a point array, as the PCL front end does from a cloud.
  */

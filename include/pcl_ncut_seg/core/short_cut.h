@@ -61,6 +61,11 @@ private:
  * making by itself. */
 double splitWorth(double ncut, double neck, double exponent, double bound, double floor);
 
+/// The neck of a limb as long as it is wide, cut at its base: a tube of radius a and length 2a
+/// has 2 pi a / sqrt(2 pi a 2a) = sqrt(pi). A piece chipped off at a view's rim has a wider one
+/// (a half disc: sqrt(2 pi)); a limb a narrower one.
+constexpr double kLimbNeck = 1.7724538509055160273; // sqrt(pi)
+
 /// The pipeline's exponent of the neck in splitWorth(): a boundary twice as long per unit of
 /// the smaller side's size must cut eight times cheaper to be worth as much.
 constexpr double kNeckExponent = 3.0;
