@@ -54,10 +54,9 @@ TEST(CadMode, SetterValidatesAndInvalidates) {
   EXPECT_FALSE(seg.getCadMode());
 }
 
-/** \brief The cases that reach the bar of EachFaceIsOneSegment: all but the triangular prism
- * (Rand index 0.948), the L-block (a side face keeps 85% of its points) and the cylinder (0.938)
- * at noise 0.01 (docs/cad.md, "Known limitations"; pcl_ncut_seg_bench_perturbation prints
- * them). */
+/** \brief The cases that reach the bar of EachFaceIsOneSegment: all but the triangular prism,
+ * the L-block and the cylinder at noise 0.01, which miss it (docs/cad.md, "Known limitations";
+ * pcl_ncut_seg_bench_perturbation prints their figures). */
 std::vector<CadCase> casesAtTheBar() {
   std::vector<CadCase> cases;
   for (const CadCase& c : cadCases())
@@ -150,16 +149,14 @@ std::vector<bool> farFromOtherFaces(const CadCase& c, double distance) {
 class CadShapes : public ::testing::TestWithParam<CadCase> {};
 
 TEST_P(CadShapes, EachFaceIsFoundAndErrorsStayNearTheRidges) {
-  // What CAD mode does on every case, up to noise of 0.6-0.9 point spacings (measured on the
-  // sampling seeds 1-5 as well, 75 runs): exactly one segment per face, each face mostly in a
-  // segment of its own, and every point that is not in its face's segment lies in the band
-  // along a ridge where noise turns the estimated normals. That band reaches 0.13 from the
-  // other faces at noise 0.01 (seeds 1-5; 0.10 with seed 1), 2.5 kNN radii (the distance to
-  // the 10th neighbour is 0.04-0.055 here); 0.15, about three, still leaves the inside of every
-  // face (of the smallest, the L-block's 0.5 x 0.4 sides, 0.2 x 0.1). How many points the band
-  // takes from its faces is what the Rand index measures: below the bar of
-  // EachFaceIsOneSegment for three of the noisiest cases, which
-  // pcl_ncut_seg_bench_perturbation prints.
+  // What CAD mode does on every case, up to noise of 0.6-0.9 point spacings: exactly one
+  // segment per face, each face mostly in a segment of its own, and every point that is not in
+  // its face's segment lies in the band along a ridge where noise turns the estimated normals.
+  // The bound on that band, 0.15 from the other faces, is about three kNN radii here and still
+  // leaves the inside of every face (of the smallest, the L-block's 0.5 x 0.4 sides, 0.2 x 0.1).
+  // How many points the band takes from its faces is what the Rand index measures; three of the
+  // noisiest cases fall below the bar of EachFaceIsOneSegment, and
+  // pcl_ncut_seg_bench_perturbation prints them.
   const CadCase& c = GetParam();
   const CadRun& r = run(c);
   const int faces = r.shape.num_parts;

@@ -318,15 +318,13 @@ INSTANTIATE_TEST_SUITE_P(Psb, PsbModel, ::testing::Values(1, 181, 182, 183, 381,
 TEST(Psb, LimbCategoriesFollowThePartsBetterThanKMeans) {
   if (!haveData())
     GTEST_SKIP() << "shared data not found at " << kPsbDir;
-  // The goal on these hands and four-legged animals is a mean 1 - Rand index of 0.2 or less
-  // (a quick prototype of the paper reached 0.13 on limb categories; people agree at about
-  // 0.10). It is not reached: 0.219, the four-legged animals' heads and tails leak into the
-  // body with no saddle between them (README, "Known limitations"); pcl_ncut_seg_bench_psb
-  // --limbs prints it. What holds: the segments follow the parts better than the same number
+  // The goal on these hands and four-legged animals is a mean 1 - Rand index of 0.2 or less.
+  // It is not reached: the four-legged animals' heads and tails leak into the body with no
+  // saddle between them (README, "Known limitations"); pcl_ncut_seg_bench_psb --limbs prints
+  // the mean. What the test checks: the segments follow the parts better than the same number
   // of clusters of the points by position alone (k-means, a segmenter that knows nothing of
-  // parts and cuts across fingers and legs wherever they are long), 0.219 against 0.257.
-  // Per category: the hands 0.160 against 0.238; the animals 0.277 against 0.275, no better
-  // than k-means: the limitation.
+  // parts and cuts across fingers and legs wherever they are long). The hands carry that; the
+  // animals alone are no better than k-means, which is the limitation.
   double sum = 0, sum_k_means = 0;
   int models = 0;
   for (const int id : {181, 182, 183, 381, 382, 383}) {

@@ -196,7 +196,8 @@ TEST(CoarseCentrality, IsCloseToExactAndIndependentOfThreads) {
               << std::endl;
     EXPECT_LT(error, 0.03);
     // The ranks of f decide the supernodes. A coarse graph of a thousand points (the hand)
-    // blurs them a little (measured 0.980); from 5000 on (the default has 20000) they hold.
+    // blurs them a little, so the rank correlation is checked from 5000 representatives on
+    // (the default has 20000).
     if (reps >= 5000) {
       EXPECT_GT(spearman, 0.99);
     }
