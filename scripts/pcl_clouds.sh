@@ -1,17 +1,27 @@
 #!/usr/bin/env bash
 # What the tool gives on each of PCL's test clouds (../shared/data/pcl): points, segments,
 # whether the cloud counted as one view, and the whole process' wall time, with the defaults;
-# written to results/pcl_clouds.md (atomically) with the command, the build and the machine.
+# written to results/pcl_clouds.md (atomically) with the command, the build and the machine,
+# and a picture of each cloud's segments from pcl_ncut_seg_viewer (off-screen, xvfb-run) in
+# docs/images/pcl/ (the clouds are PCL's, BSD-3).
 #
 #   bash scripts/pcl_clouds.sh [OUT.md]
 #
-# Environment: DATA (default ../shared/data/pcl), TOOL (default build/tools/pcl_ncut_seg).
+# Environment: DATA (default ../shared/data/pcl), TOOL (default build/tools/pcl_ncut_seg),
+# VIEWER (default build/tools/pcl_ncut_seg_viewer; no pictures without it or xvfb-run).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 DATA="${DATA:-$ROOT/../shared/data/pcl}"
 TOOL="${TOOL:-$ROOT/build/tools/pcl_ncut_seg}"
+VIEWER="${VIEWER:-$ROOT/build/tools/pcl_ncut_seg_viewer}"
 OUT="${1:-$ROOT/results/pcl_clouds.md}"
+IMAGES="$ROOT/docs/images/pcl"
+PICTURES=0
+if [ -x "$VIEWER" ] && command -v xvfb-run > /dev/null; then
+  PICTURES=1
+  mkdir -p "$IMAGES"
+fi
 [ -d "$DATA" ] || { echo "pcl_clouds.sh: no PCL test clouds at $DATA" >&2; exit 1; }
 [ -x "$TOOL" ] || { echo "pcl_clouds.sh: no tool at $TOOL (build it first)" >&2; exit 1; }
 
@@ -22,10 +32,10 @@ trap 'rm -rf "$WORK"' EXIT
   echo
   echo "Written by \`scripts/pcl_clouds.sh\` on $(date -u +%Y-%m-%d) with \`$(basename "$TOOL") CLOUD OUT.pcd\`" \
     "(the defaults); build $(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo unknown);" \
-    "machine: $(nproc) cores, $(uname -sr). Time: the whole process (read, segment, write), wall seconds."
+    "machine: $(nproc) cores, $(uname -sr), load average $(cut -d" " -f1-3 /proc/loadavg). Time: the whole process (read, segment, write), wall seconds."
   echo
-  echo "| cloud | points | analysed | segments | view | seconds |"
-  echo "|---|---|---|---|---|---|"
+  echo "| cloud | points | analysed | segments | view | seconds | segments (pcl_ncut_seg_viewer) |"
+  echo "|---|---|---|---|---|---|---|"
   for cloud in "$DATA"/*.pcd; do
     name="$(basename "$cloud")"
     start=$(date +%s.%N)
@@ -38,8 +48,16 @@ trap 'rm -rf "$WORK"' EXIT
     analysed="$(sed -n 's/^n *: \([0-9]*\) points analysed.*/\1/p' "$WORK/log")"
     segments="$(sed -n 's/^t *: \([0-9]*\) segments.*/\1/p' "$WORK/log")"
     view="$(sed -n 's/^view: //p' "$WORK/log")"
-    printf '| %s | %s | %s | %s | %s | %.2f |\n' "$name" "$points" "$analysed" "$segments" \
-      "$view" "$(awk "BEGIN { print $end - $start }")"
+    picture=""
+    png="${name%.pcd}.png"
+    if [ "$PICTURES" = 1 ] &&
+      xvfb-run -a "$VIEWER" "$cloud" -screenshot "$WORK/$png" -view segments -quiet \
+        > "$WORK/viewer.log" 2>&1 && [ -s "$WORK/$png" ]; then
+      mv "$WORK/$png" "$IMAGES/$png"
+      picture="<img src=\"../docs/images/pcl/$png\" width=\"240\">"
+    fi
+    printf '| %s | %s | %s | %s | %s | %.2f | %s |\n' "$name" "$points" "$analysed" "$segments" \
+      "$view" "$(awk "BEGIN { print $end - $start }")" "$picture"
   done
 } > "$WORK/table.md"
 mkdir -p "$(dirname "$OUT")"

@@ -34,7 +34,7 @@ INPUTS = [  # (folder, mode in models.csv, label)
 ]
 HALVES = ("1-3", "4-6")
 # Stages that the ablation below led to remove (their runs were made before the removal).
-REMOVED = {"organized_rim", "view_small_segment"}
+REMOVED = {"organized_rim"}
 # A change smaller than this in a mean over a half (19 x 3 models) is noise.
 NOISE = 0.002
 
@@ -240,13 +240,12 @@ def ablation(runs, ids_by, configs, md, abl_dir):
     offs = [c for c in configs if c.startswith("off-")]
     if not offs:
         return
-    md.append("## What each stage buys\n")
     builds = sorted({open(os.path.join(abl_dir, c, f, "build")).read().strip()
                      for c in configs for f, _, _ in INPUTS
                      if os.path.exists(os.path.join(abl_dir, c, f, "build"))})
     md.append(f"From the runs in `{abl_dir}` (build {', '.join(builds) or 'unknown'}; their "
               "commands are in each run's folder): "
-              "fewer draws and views than the tables above, each stage off against the "
+              "fewer draws and views than the report, each stage off against the "
               "defaults on the same points. A stage pays on an input when turning it off makes "
               f"both halves worse by at least {NOISE} in 1 - RI or Hamming and neither better by "
               "as much in the other; it costs on an input when turning it off makes a half "
@@ -258,12 +257,12 @@ def ablation(runs, ids_by, configs, md, abl_dir):
         name = off[4:] + (" (removed)" if off[4:] in REMOVED else "")
         md.append(f"| {name} | {', '.join(pays) or '—'} | {', '.join(costs) or '—'} |")
     md.append("")
-    md.append("### Each stage off, per input\n")
+    md.append("## Each stage off, per input\n")
     md.append("Off minus defaults, `1-3 / 4-6`: positive means the stage helps there. (The "
               "runs shared a loaded machine, so their times are not compared here; speed is "
               "`bench/`'s.)\n")
     for off in offs:
-        md.append(f"#### {off[4:]}\n")
+        md.append(f"### {off[4:]}\n")
         md.append("| input | Δ 1 - RI | Δ Hamming | segments (defaults → off) |")
         md.append("|---|---|---|---|")
         for label, d, mb, mo in stage_deltas(runs, ids_by, off):
@@ -282,8 +281,8 @@ def write_atomically(target, lines):
 
 
 def main():
-    if len(sys.argv) not in (3, 4):
-        sys.exit("usage: report.py OUT REPORT.md [ABLATION_OUT]")
+    if len(sys.argv) not in (3, 4, 5):
+        sys.exit("usage: report.py OUT REPORT.md [ABLATION_OUT [ABLATION.md]]")
     out, target = sys.argv[1], sys.argv[2]
     runs, categories = read_runs(out)
     if not runs:
@@ -293,13 +292,21 @@ def main():
     md = []
     header(out, configs, md)
     main_table(runs, ids_by, md)
-    if len(sys.argv) == 4:
-        abl_runs, _ = read_runs(sys.argv[3])
-        abl_configs = sorted({k[0] for k in abl_runs})
-        ablation(abl_runs, ids_by, abl_configs, md, sys.argv[3])
     category_tables(runs, categories, md)
     write_atomically(target, md)
     print(f"report.py: wrote {target}")
+    if len(sys.argv) >= 4:  # the ablation, in its own file: it comes from its own runs
+        abl_target = sys.argv[4] if len(sys.argv) == 5 else os.path.join(
+            os.path.dirname(os.path.abspath(target)), "ablation.md")
+        abl_runs, _ = read_runs(sys.argv[3])
+        abl_configs = sorted({k[0] for k in abl_runs})
+        abl = [f"# What each stage buys\n",
+               f"Written by `scripts/report.py` on {datetime.date.today()}; machine: {machine()}. "
+               f"The inputs are those of [{os.path.basename(target)}]"
+               f"({os.path.basename(target)}).\n"]
+        ablation(abl_runs, ids_by, abl_configs, abl, sys.argv[3])
+        write_atomically(abl_target, abl)
+        print(f"report.py: wrote {abl_target}")
 
 
 if __name__ == "__main__":
