@@ -1,0 +1,1 @@
+// The precompiled headers of the tests (test/CMakeLists.txt) are built with this file.
