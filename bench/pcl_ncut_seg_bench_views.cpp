@@ -9,7 +9,7 @@
  *      1 m, 60 degrees down: every pixel valid.
  * Ours runs with the defaults on the organized cloud (NaNs included) and on its valid points
  * alone (unorganized, sensor origin kept: the crop a tabletop pipeline hands over), on one
- * thread and on all cores; LCCP as the evaluator runs it (tools/psb_peers.h: normals towards the sensor,
+ * thread and on all cores; LCCP as the evaluator runs it (eval/psb_peers.h: normals towards the sensor,
  * supervoxels, LCCP) with the resolutions of PCL's LCCP tutorial (voxels of 7.5 mm, seeds of
  * 3 cm), on the valid points. Prints the wall time of each (the median of 5 runs); skips when
  * the data is absent.

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# From a fresh Debian 12 machine to a demo result: installs the dependencies (as root or with
-# sudo), builds the pcl_ncut_seg tool in Release, and segments the bundled armadillo model
-# into build/armadillo_segments.pcd (view it with: pcl_viewer build/armadillo_segments.pcd).
+# From a fresh Debian 12 machine to a demo result: installs what the tool needs (a compiler,
+# CMake, PCL; as root or with sudo), builds the pcl_ncut_seg tool in Release, and segments the
+# bundled armadillo model into build/armadillo_segments.pcd (view it with pcl_viewer, from
+# pcl-tools, or with the project's viewer, target pcl_ncut_seg_viewer).
 #
 #   bash scripts/demo.sh
 #
@@ -13,9 +14,12 @@ cd "$ROOT"
 JOBS="${JOBS:-2}"
 BUILD_DIR="${BUILD_DIR:-build}"
 
-bash scripts/install_deps.sh
+bash scripts/install_deps.sh --tool
 
-cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPCL_NCUT_SEG_BUILD_TOOLS=ON
+# Only the library and tools/: the tests, the evaluator, Python and ROS need more packages.
+cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPCL_NCUT_SEG_BUILD_TOOLS=ON \
+  -DPCL_NCUT_SEG_BUILD_TESTS=OFF -DPCL_NCUT_SEG_BUILD_EVAL=OFF -DPCL_NCUT_SEG_BUILD_PYTHON=OFF \
+  -DPCL_NCUT_SEG_BUILD_ROS=OFF
 cmake --build "$BUILD_DIR" -j "$JOBS" --target pcl_ncut_seg_tool
 
 cd "$BUILD_DIR"

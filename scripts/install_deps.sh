@@ -1,11 +1,20 @@
 #!/usr/bin/env bash
-# Installs the build and test dependencies on Debian 12 (or a close relative) with apt-get.
-# Does nothing when they are all installed already. Needs root, or sudo.
+# Installs the dependencies on Debian 12 (or a close relative) with apt-get. Does nothing when
+# they are all installed already. Needs root, or sudo.
+#
+#   bash scripts/install_deps.sh          # everything the build, the tests and CI need
+#   bash scripts/install_deps.sh --tool   # only the library and the command-line tools
+#                                         # (scripts/demo.sh): a compiler, CMake and PCL
 set -euo pipefail
 
-PACKAGES=(
+# The library and tools/: PCL (with Eigen, FLANN, Boost, and VTK for the viewer), CMake, g++.
+TOOL_PACKAGES=(
   build-essential cmake
-  libpcl-dev libeigen3-dev libflann-dev libboost-graph-dev libspectra-dev
+  libpcl-dev libeigen3-dev libflann-dev libboost-graph-dev
+)
+# The tests, the lab and the other front ends (scripts/test.sh, .ci/run).
+FULL_PACKAGES=(
+  libspectra-dev
   libgtest-dev
   python3-dev python3-pybind11 python3-numpy python3-pytest   # the Python module and its tests
   python3-open3d python3-mypy      # the Open3D tests and example; the stub checked by mypy, stubtest
@@ -20,6 +29,12 @@ PACKAGES=(
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   rospack-tools rosbash python3-rostest librostest-dev
 )
+
+case "${1:-}" in
+  "") PACKAGES=("${TOOL_PACKAGES[@]}" "${FULL_PACKAGES[@]}") ;;
+  --tool) PACKAGES=("${TOOL_PACKAGES[@]}") ;;
+  *) echo "usage: $0 [--tool]" >&2; exit 2 ;;
+esac
 
 missing=()
 for pkg in "${PACKAGES[@]}"; do

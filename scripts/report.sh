@@ -11,7 +11,7 @@
 # object too), "lccp" (LCCP at the settings below, and the people against each other), "cpc",
 # or any other name for ours with the given flags, e.g. "off-concavity" with "-concavity off".
 # Environment: DATA (the dev split, default ../shared/data/psb-dev), EVAL (the
-# evaluator, default build/tools/pcl_ncut_seg_eval), DRAWS (draws of the uniform samples,
+# evaluator, default build/eval/pcl_ncut_seg_eval), DRAWS (draws of the uniform samples,
 # default 3), NOISY_DRAWS (of the noisy and graded samples, default 1), SAMPLES (default 20000),
 # VIEWS (views per model, default 4), JOBS (evaluator runs at a time, default 2), INPUTS (a
 # space-separated subset of the inputs below).
@@ -26,7 +26,7 @@ OUT="$1"
 CONFIG="$2"
 shift 2
 DATA="${DATA:-$ROOT/../shared/data/psb-dev}"
-EVAL="${EVAL:-$ROOT/build/tools/pcl_ncut_seg_eval}"
+EVAL="${EVAL:-$ROOT/build/eval/pcl_ncut_seg_eval}"
 DRAWS="${DRAWS:-3}"
 NOISY_DRAWS="${NOISY_DRAWS:-1}"
 SAMPLES="${SAMPLES:-20000}"

@@ -15,8 +15,12 @@ BUILD_DIR="${BUILD_DIR:-build}"
 
 bash scripts/install_deps.sh
 
+# Every part named ON, so that a build directory configured by scripts/demo.sh (the tool alone)
+# gets them all back. Python and ROS are still skipped with a message when pybind11 or ROS 1
+# is missing.
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release \
-  -DPCL_NCUT_SEG_BUILD_TESTS=ON -DPCL_NCUT_SEG_BUILD_TOOLS=ON
+  -DPCL_NCUT_SEG_BUILD_TESTS=ON -DPCL_NCUT_SEG_BUILD_TOOLS=ON -DPCL_NCUT_SEG_BUILD_EVAL=ON \
+  -DPCL_NCUT_SEG_BUILD_PYTHON=ON -DPCL_NCUT_SEG_BUILD_ROS=ON
 cmake --build "$BUILD_DIR" -j "$JOBS"
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j "$JOBS"
 

@@ -48,7 +48,7 @@ def main():
     ids_by = report.groups(categories)
     md = ["# LCCP and CPC at the settings a user would choose\n",
           f"Written by `scripts/tune_peers.py` from the runs in `{out}`; build {report.build()}; "
-          f"machine: {report.machine()}. Every other setting is `tools/psb_peers.h`'s (voxel "
+          f"machine: {report.machine()}. Every other setting is `eval/psb_peers.h`'s (voxel "
           "0.01 diagonals, concavity tolerance 10 degrees, normals from 10 neighbours towards "
           "the sensor, or away from the centroid on whole objects). `a / b`: the halves of the "
           "dev split, models base+1..3 / base+4..6. The chosen setting has the lowest mean of "

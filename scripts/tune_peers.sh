@@ -13,7 +13,7 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 OUT="${1:?usage: bash scripts/tune_peers.sh OUT}"
 DATA="${DATA:-$ROOT/../shared/data/psb-dev}"
-EVAL="${EVAL:-$ROOT/build/tools/pcl_ncut_seg_eval}"
+EVAL="${EVAL:-$ROOT/build/eval/pcl_ncut_seg_eval}"
 VIEWS="${VIEWS:-2}"
 
 for ms in 0 3 10; do

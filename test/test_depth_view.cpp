@@ -1,7 +1,7 @@
 /*
  * Depth-camera views of a mesh (tools/depth_view.h): the ray casting against brute force, the
  * organized layout and its NaNs, the camera convention, the range noise's growth with depth,
- * the sensor pose; and the scoring of a view on the faces it sees (tools/view_scoring.h).
+ * the sensor pose; and the scoring of a view on the faces it sees (eval/view_scoring.h).
  */
 #include "depth_view.h"
 #include "depth_view_pcl.h"

@@ -1,6 +1,6 @@
 /*
- * The evaluator's sampling conditions (tools/eval_sampling.h) and its spread report
- * (tools/eval_spread.h): noise in units of the mean spacing, the density gradient's ratio as
+ * The evaluator's sampling conditions (eval/eval_sampling.h) and its spread report
+ * (eval/eval_spread.h): noise in units of the mean spacing, the density gradient's ratio as
  * measured on the samples, each face labelled by its nearest sample, the permutation and its
  * mapping back, and the spread of a tiny report made by hand.
  */

@@ -1,5 +1,5 @@
 /*
- * The benchmark's metrics (tools/psb_metrics.h) on small examples computed by hand, including
+ * The benchmark's metrics (eval/psb_metrics.h) on small examples computed by hand, including
  * the degenerate segmentations: one segment, and one segment per face.
  */
 #include "psb_metrics.h"
