@@ -37,7 +37,9 @@ VIEWS=("$BENCH/pcl_ncut_seg_bench_views")
   echo
   for run in TABLE1 VIEWS; do
     declare -n cmd="$run"
-    echo "## \`$(basename "${cmd[0]}") ${cmd[*]:1}\`"
+    title="$(basename "${cmd[0]}")"
+    [ "${#cmd[@]}" -gt 1 ] && title="$title ${cmd[*]:1}"
+    echo "## \`$title\`"
     echo
     echo '```'
     "${cmd[@]}" 2>&1
