@@ -18,10 +18,13 @@
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -273,7 +276,8 @@ void announceInput(const Command& cmd, const Input& input) {
 
 /** Segment the input; false with one error line when there is no result. */
 bool segment(const Command& cmd, const Input& input, ProgressBar& progress, Segmenter& seg,
-             std::vector<pcl::PointIndices>& segments) {
+             std::vector<pcl::PointIndices>& segments,
+             pcl::PointCloud<pcl::PointXYZL>::Ptr& labeled) {
   seg.setInputCloud(input.cloud);
   seg.setProgressCallback(progress.callback());
   try {
@@ -286,7 +290,7 @@ bool segment(const Command& cmd, const Input& input, ProgressBar& progress, Segm
     fail("segmentation of '" + cmd.input_path + "' produced no segments");
     return false;
   }
-  const pcl::PointCloud<pcl::PointXYZL>::Ptr labeled = seg.getLabeledCloud();
+  labeled = seg.getLabeledCloud();
   if (!labeled || labeled->size() != input.cloud->size()) {
     fail("segmentation of '" + cmd.input_path + "' returned no labelled cloud");
     return false;
@@ -405,6 +409,11 @@ bool writeOutputs(const Command& cmd, const Input& input,
 } // namespace
 
 int main(int argc, char** argv) {
+  // The stages' large arrays come and go: keep freed memory for the next one rather than
+  // return it to the system and fault it in again (a tenth of the time at 1M points; the same
+  // peak). Arrays above 32 MB are still mapped and unmapped whole.
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
   Flags flags;
   if (!parseFlags(argc, argv, toolFlags(), flags))
     return 1;
@@ -427,9 +436,9 @@ int main(int argc, char** argv) {
   if (!readInput(cmd, progress, input) || !claimOutputs(cmd, outputs))
     return 1;
   announceInput(cmd, input);
-  if (!segment(cmd, input, progress, seg, segments))
+  pcl::PointCloud<pcl::PointXYZL>::Ptr labeled;
+  if (!segment(cmd, input, progress, seg, segments, labeled))
     return 1;
   printReport(seg, segments.size());
-  return writeOutputs(cmd, input, *seg.getLabeledCloud(), segments.size(), progress, outputs) ? 0
-                                                                                              : 1;
+  return writeOutputs(cmd, input, *labeled, segments.size(), progress, outputs) ? 0 : 1;
 }

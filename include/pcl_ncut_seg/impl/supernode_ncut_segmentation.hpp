@@ -264,34 +264,40 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   result_ = pcl_ncut_seg::cut(*analysis_, params_, times_);
   if (progress_)
     progress_("HSeg", 1.0);
-  segments.resize(result_.num_segments);
+  // Each point's segment, then one pass in index order: every segment's indices come out
+  // sorted with no sort. The cut numbers segments by their first analysed point; a point carried
+  // to its nearest analysed one (max_points) can come earlier. Segments are renumbered by their
+  // smallest point index, in the result too, so that labels and colours agree with their order.
+  constexpr std::uint32_t kNoSegment = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> label(input_->size(), kNoSegment);
   for (std::size_t i = 0; i < point_index_.size(); ++i)
-    segments[result_.point_segment[i]].indices.push_back(point_index_[i]);
+    label[point_index_[i]] = result_.point_segment[i];
   for (const auto& d : duplicates_)
-    segments[result_.point_segment[d.second]].indices.push_back(d.first);
-  for (auto& s : segments)
-    std::sort(s.indices.begin(), s.indices.end());
-  // The cut numbers segments by their first analysed point; a point carried to its nearest
-  // analysed one (max_points) can come earlier. Renumber by the smallest point index, in
-  // the result too, so that labels and colours agree with the order of the segments.
-  std::vector<std::uint32_t> order(segments.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&segments](std::uint32_t a, std::uint32_t b) {
-    return segments[a].indices.front() < segments[b].indices.front();
-  });
-  if (!std::is_sorted(order.begin(), order.end())) {
-    std::vector<std::uint32_t> rank(order.size());
-    std::vector<pcl::PointIndices> sorted(order.size());
-    for (std::size_t r = 0; r < order.size(); ++r) {
-      rank[order[r]] = static_cast<std::uint32_t>(r);
-      sorted[r] = std::move(segments[order[r]]);
+    label[d.first] = result_.point_segment[d.second];
+  std::vector<std::uint32_t> rank(result_.num_segments, kNoSegment);
+  std::vector<std::size_t> size(result_.num_segments, 0);
+  std::uint32_t next = 0;
+  for (const std::uint32_t l : label)
+    if (l != kNoSegment) {
+      if (rank[l] == kNoSegment)
+        rank[l] = next++;
+      ++size[l];
     }
-    segments = std::move(sorted);
-    for (std::uint32_t& label : result_.point_segment)
-      label = rank[label];
-    for (std::uint32_t& label : result_.supernode_segment)
-      if (label < rank.size())
-        label = rank[label];
+  for (std::uint32_t& r : rank) // (a segment with no point: none is expected)
+    if (r == kNoSegment)
+      r = next++;
+  segments.resize(result_.num_segments);
+  for (std::size_t s = 0; s < rank.size(); ++s)
+    segments[rank[s]].indices.reserve(size[s]);
+  for (std::size_t idx = 0; idx < label.size(); ++idx)
+    if (label[idx] != kNoSegment)
+      segments[rank[label[idx]]].indices.push_back(static_cast<pcl::index_t>(idx));
+  if (!std::is_sorted(rank.begin(), rank.end())) {
+    for (std::uint32_t& l : result_.point_segment)
+      l = rank[l];
+    for (std::uint32_t& l : result_.supernode_segment)
+      if (l < rank.size())
+        l = rank[l];
   }
   for (auto& s : segments)
     s.header = input_->header;
