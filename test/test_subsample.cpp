@@ -97,12 +97,14 @@ TEST(Subsample, EvenSubsetKeepsThePointNearestTheCentreOfEachOccupiedCube) {
 
 TEST(Subsample, NothingHappensAtOrBelowTheResolution) {
   const auto shape = test::makeDumbbell(800, 3);
-  PreparedPoints prepared = preparePoints(toArray(*shape.cloud));
-  const auto before = prepared.set.xyz;
-  EXPECT_EQ(subsamplePoints(prepared, 800, 1), 0u);
-  EXPECT_EQ(subsamplePoints(prepared, 5000, 1), 0u);
-  EXPECT_EQ(prepared.set.xyz, before);
-  EXPECT_TRUE(prepared.copies.empty());
+  const std::vector<float> xyz = toArray(*shape.cloud);
+  const PreparedPoints plain = preparePoints(xyz);
+  for (const std::size_t max_points : {std::size_t(0), xyz.size() / 3, std::size_t(5000)}) {
+    const PreparedPoints prepared = prepareAtResolution(xyz, max_points, 1);
+    EXPECT_EQ(prepared.set.xyz, plain.set.xyz);
+    EXPECT_EQ(prepared.point, plain.point);
+    EXPECT_TRUE(prepared.copies.empty());
+  }
 }
 
 TEST(Subsample, KeepsTheEvenSubsetAndGivesEveryOtherPointItsNearestKeptPoint) {
@@ -112,11 +114,17 @@ TEST(Subsample, KeepsTheEvenSubsetAndGivesEveryOtherPointItsNearestKeptPoint) {
   // Two copies of point 5, to check that copies of a dropped point follow it.
   xyz.insert(xyz.end(), {xyz[15], xyz[16], xyz[17]});
   const std::size_t max_points = 700;
-  PreparedPoints prepared = preparePoints(xyz);
-  ASSERT_EQ(prepared.point.size(), n);
-  const std::size_t dropped = subsamplePoints(prepared, max_points, 2);
-  const std::size_t w = n - dropped; // the kept points
+  const PreparedPoints all = preparePoints(xyz);
+  ASSERT_EQ(all.point.size(), n);
+  const PreparedPoints prepared = prepareAtResolution(xyz, max_points, 2);
+  const std::size_t w = prepared.point.size(); // the kept points
   ASSERT_LE(w, max_points);
+  // The kept vertices come in the order they have among all the points.
+  std::vector<std::uint32_t> kept_in_order;
+  for (const std::uint32_t p : all.point)
+    if (std::find(prepared.point.begin(), prepared.point.end(), p) != prepared.point.end())
+      kept_in_order.push_back(p);
+  EXPECT_EQ(kept_in_order, prepared.point);
   ASSERT_EQ(prepared.point.size(), w);
   ASSERT_EQ(prepared.set.xyz.size(), 3 * w);
   ASSERT_EQ(prepared.raw.size(), 3 * w);
@@ -183,8 +191,7 @@ TEST(Subsample, TheSubsetDoesNotDependOnTheOrderOfThePoints) {
   for (std::size_t i : perm)
     shuffled.insert(shuffled.end(), {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]});
   auto keptPositions = [](const std::vector<float>& points) {
-    PreparedPoints prepared = preparePoints(points);
-    subsamplePoints(prepared, 900, 1);
+    const PreparedPoints prepared = prepareAtResolution(points, 900, 1);
     std::set<Position> kept;
     for (std::size_t v = 0; v < prepared.point.size(); ++v)
       kept.insert(at(prepared.raw, v));

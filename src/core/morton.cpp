@@ -18,7 +18,7 @@ std::uint32_t spread(std::uint32_t v) {
 }
 } // namespace
 
-std::vector<std::uint32_t> mortonCodes(const float* xyz, std::size_t n) {
+MortonBox mortonBox(const float* xyz, std::size_t n) {
   float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
   for (std::size_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) {
@@ -27,7 +27,17 @@ std::vector<std::uint32_t> mortonCodes(const float* xyz, std::size_t n) {
       hi[c] = i == 0 ? v : std::max(hi[c], v);
     }
   // One cube over the box, so that cells are cubes.
-  const float extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  MortonBox box;
+  for (int c = 0; c < 3; ++c)
+    box.lo[c] = lo[c];
+  box.extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  return box;
+}
+
+std::vector<std::uint32_t> mortonCodes(const float* xyz, std::size_t n, const MortonBox* given) {
+  const MortonBox box = given ? *given : mortonBox(xyz, n);
+  const float* lo = box.lo;
+  const float extent = box.extent;
   const double scale = extent > 0.0f ? 1023.999 / extent : 0.0;
   std::vector<std::uint32_t> code(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -45,8 +55,8 @@ std::vector<std::uint32_t> mortonOrder(const float* xyz, std::size_t n) {
   return stableOrderByKey(mortonCodes(xyz, n)); // ties in index order
 }
 
-DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n) {
-  const std::vector<std::uint32_t> code = mortonCodes(xyz, n);
+DistinctMortonOrder distinctMortonOrder(const float* xyz, std::size_t n, const MortonBox* box) {
+  const std::vector<std::uint32_t> code = mortonCodes(xyz, n, box);
   std::vector<std::uint32_t> order = stableOrderByKey(code);
   // Within a cell, the points by (x, y, z, index): the vertices' order then depends on the
   // positions alone, not on the input's order, and equal positions are adjacent.

@@ -244,9 +244,9 @@ void centrePoints(PreparedPoints& prepared) {
     prepared.centroid[d] = c[d];
 }
 
-PreparedPoints preparePoints(std::vector<float> xyz) {
+PreparedPoints preparePoints(std::vector<float> xyz, const MortonBox* box) {
   PreparedPoints out;
-  DistinctMortonOrder order = distinctMortonOrder(xyz.data(), xyz.size() / 3);
+  DistinctMortonOrder order = distinctMortonOrder(xyz.data(), xyz.size() / 3, box);
   const std::size_t m = order.point.size();
   out.raw.resize(3 * m);
   for (std::size_t v = 0; v < m; ++v)
@@ -264,10 +264,10 @@ std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n,
                                          const Parameters& params) {
   if (n == 0 || !validate(params))
     return {};
-  PreparedPoints prepared = preparePoints(std::vector<float>(xyz, xyz + 3 * n));
-  if (params.graph.max_points)
-    subsamplePoints(prepared, static_cast<std::size_t>(*params.graph.max_points),
-                    usableThreads(params.execution.num_threads));
+  PreparedPoints prepared = prepareAtResolution(
+      std::vector<float>(xyz, xyz + 3 * n),
+      params.graph.max_points ? static_cast<std::size_t>(*params.graph.max_points) : 0,
+      usableThreads(params.execution.num_threads));
   const std::size_t m = prepared.point.size();
   PointSet& set = prepared.set;
   set.k = std::min<std::size_t>(static_cast<std::size_t>(params.graph.k), m - 1);

@@ -143,94 +143,61 @@ std::vector<char> evenSubset(const float* raw, std::size_t m, std::size_t max_po
 
 namespace {
 
-/// Per point, the new id of its nearest kept point (its own for a kept one), by FLANN's exact
-/// single kd-tree over the kept points (as knn.cpp); the same for any number of threads.
-std::vector<std::uint32_t> nearestKept(const float* raw, std::size_t m,
-                                       const std::vector<char>& keep,
-                                       const std::vector<std::uint32_t>& new_id,
-                                       std::vector<float>& kept_raw, int num_threads) {
+/// Per dropped point (keep[v] == 0), (v, its nearest kept vertex) by FLANN's exact single
+/// kd-tree over the kept vertices (as knn.cpp), in index order; the same for any threads.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> nearestKept(const float* xyz, std::size_t n,
+                                                                 const std::vector<char>& keep,
+                                                                 std::vector<float>& kept_raw,
+                                                                 int num_threads) {
   using Index = flann::KDTreeSingleIndex<flann::L2_Simple<float>>;
   Index index(flann::Matrix<float>(kept_raw.data(), kept_raw.size() / 3, 3),
               flann::KDTreeSingleIndexParams(15));
   index.buildIndex();
   const flann::SearchParams search(-1, 0.0f, true);
-  std::vector<std::uint32_t> nearest(m);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;
+  copies.reserve(n - kept_raw.size() / 3);
+  for (std::size_t v = 0; v < n; ++v)
+    if (!keep[v])
+      copies.emplace_back(static_cast<std::uint32_t>(v), 0u);
 #pragma omp parallel num_threads(num_threads)
   {
     flann::KNNSimpleResultSet<float> result(1);
     std::size_t id = 0;
     float dist = 0.0f;
 #pragma omp for schedule(dynamic, 4096)
-    for (std::ptrdiff_t sv = 0; sv < static_cast<std::ptrdiff_t>(m); ++sv) {
-      const auto v = static_cast<std::size_t>(sv);
-      if (keep[v]) {
-        nearest[v] = new_id[v];
-        continue;
-      }
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(copies.size()); ++i) {
       result.clear();
-      index.findNeighbors(result, raw + 3 * v, search);
+      index.findNeighbors(result, xyz + 3 * std::size_t(copies[i].first), search);
       result.copy(&id, &dist, 1, false);
-      nearest[v] = static_cast<std::uint32_t>(id);
+      copies[i].second = static_cast<std::uint32_t>(id);
     }
   }
-  return nearest;
+  return copies;
 }
 
 } // namespace
 
-std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, int num_threads) {
-  const std::size_t m = prepared.point.size();
-  if (max_points == 0 || m <= max_points)
-    return 0;
-  const float* raw = prepared.raw.data();
-  const std::vector<char> keep = evenSubset(raw, m, max_points);
-  const auto kept = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
-
-  // Kept vertices, renumbered in their Morton order.
-  std::vector<std::uint32_t> new_id(m, kNone);
-  std::vector<float> kept_raw;
-  kept_raw.reserve(3 * kept);
-  std::uint32_t next = 0;
-  for (std::size_t v = 0; v < m; ++v)
+PreparedPoints prepareAtResolution(std::vector<float> xyz, std::size_t max_points,
+                                   int num_threads) {
+  const std::size_t n = xyz.size() / 3;
+  if (max_points == 0 || n <= max_points)
+    return preparePoints(std::move(xyz));
+  // The subset first, so that only the kept points are sorted along the Morton curve. Copies
+  // of a position share its cube; the first of them in index order is kept, if any.
+  const std::vector<char> keep = evenSubset(xyz.data(), n, max_points);
+  std::vector<std::uint32_t> kept_index;
+  std::vector<float> kept_xyz;
+  for (std::size_t v = 0; v < n; ++v)
     if (keep[v]) {
-      new_id[v] = next++;
-      kept_raw.insert(kept_raw.end(), raw + 3 * v, raw + 3 * v + 3);
+      kept_index.push_back(static_cast<std::uint32_t>(v));
+      kept_xyz.insert(kept_xyz.end(), xyz.begin() + 3 * v, xyz.begin() + 3 * v + 3);
     }
-  const std::vector<std::uint32_t> nearest =
-      nearestKept(raw, m, keep, new_id, kept_raw, num_threads);
-  // Copies of any vertex follow it to its nearest kept point; dropped vertices become copies.
-  for (auto& copy : prepared.copies)
-    copy.second = nearest[copy.second];
-  for (std::size_t v = 0; v < m; ++v)
-    if (!keep[v])
-      prepared.copies.emplace_back(prepared.point[v], nearest[v]);
-  // Compact the per-vertex arrays to the kept vertices.
-  PointSet& set = prepared.set;
-  std::size_t w = 0;
-  for (std::size_t v = 0; v < m; ++v) {
-    if (!keep[v])
-      continue;
-    for (int d = 0; d < 3; ++d)
-      prepared.raw[3 * w + d] = prepared.raw[3 * v + d];
-    prepared.point[w] = prepared.point[v];
-    if (!set.order.empty())
-      set.order[w] = set.order[v];
-    ++w;
-  }
-  prepared.raw.resize(3 * w);
-  prepared.raw.shrink_to_fit();
-  centrePoints(prepared); // as preparePoints() centres the kept points alone
-  prepared.point.resize(w);
-  if (!set.order.empty()) { // dense ranks again, in the same order
-    set.order.resize(w);
-    std::vector<std::uint32_t> by_rank(w);
-    std::iota(by_rank.begin(), by_rank.end(), 0u);
-    std::sort(by_rank.begin(), by_rank.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return set.order[a] < set.order[b]; });
-    for (std::size_t r = 0; r < w; ++r)
-      set.order[by_rank[r]] = static_cast<std::uint32_t>(r);
-  }
-  return m - w;
+  const MortonBox box = mortonBox(xyz.data(), n);
+  PreparedPoints out = preparePoints(std::move(kept_xyz), &box);
+  for (std::uint32_t& p : out.point)
+    p = kept_index[p];
+  out.copies = nearestKept(xyz.data(), n, keep, out.raw, num_threads);
+  return out;
 }
 
 } // namespace pcl_ncut_seg

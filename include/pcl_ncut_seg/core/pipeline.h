@@ -37,6 +37,7 @@
 #include <pcl_ncut_seg/core/centrality.h>
 #include <pcl_ncut_seg/core/csr_graph.h>
 #include <pcl_ncut_seg/core/denoise.h>
+#include <pcl_ncut_seg/core/morton.h>
 #include <pcl_ncut_seg/core/normalized_cut.h>
 #include <pcl_ncut_seg/core/supernode_graph.h>
 #include <pcl_ncut_seg/core/supernodes.h>
@@ -174,8 +175,9 @@ void centrePoints(PreparedPoints& prepared);
 
 /** \brief Order, deduplicate and centre points (3 floats each, finite). The centroid is
  * taken in double, so that a model far from the origin keeps its float precision.
- * \param[in] xyz  consumed (freed before the centred copy is made) */
-PreparedPoints preparePoints(std::vector<float> xyz);
+ * \param[in] xyz  consumed (freed before the centred copy is made)
+ * \param[in] box  the Morton grid's cube (default: the points' own; see mortonCodes()) */
+PreparedPoints preparePoints(std::vector<float> xyz, const MortonBox* box = nullptr);
 
 /** \brief The whole pipeline on n finite points (3 floats each) with FLANN's kd-tree for the
  * kNN graph: per point its segment in [0, t), the segments numbered by their first point.

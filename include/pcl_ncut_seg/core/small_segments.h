@@ -17,9 +17,9 @@
 namespace pcl_ncut_seg {
 
 /** \brief Join each segment whose area is below min_area to the touching segment it shares
- * the most kNN edges with, unless their boundary's neck is below min_neck. The smallest such segment (then the smallest id) joins first, and
- * the joined segment is measured again, until none is small or the small ones touch no other
- * segment (an island stays).
+ * the most kNN edges with, unless their boundary's neck is below min_neck. The smallest such
+ * segment (then the smallest id) joins first, and the joined segment is measured again, until none
+ * is small or the small ones touch no other segment (an island stays).
  *
  * Inputs:
  * \param[in] graph        kNN graph

@@ -25,25 +25,24 @@ namespace pcl_ncut_seg {
  * that between 97% and 100% of max_points cubes are occupied (fewer only when the points are so
  * far apart that the cubes would need more than 21 bits per axis). Ties go by position, so the
  * subset depends on the set of positions only, not on their order; it moves with the points.
- * \param[in]  raw         m points, x y z each, finite and distinct
+ * \param[in]  raw         m points, x y z each, finite (copies of a position share its cube:
+ *                         the first of them is kept, if any)
  * \param[in]  max_points  at most this many are kept, >= 1
  * \param[out] cube_edge   the grid's edge (optional)
  * \return per point, 1 if kept */
 std::vector<char> evenSubset(const float* raw, std::size_t m, std::size_t max_points,
                              double* cube_edge = nullptr);
 
-/** \brief Keep at most max_points of the prepared points, their evenSubset(): the same for any
- * order of the input. Every dropped point, and every copy of one, becomes a copy
- * of its nearest kept point (Euclidean), so that it shares its
- * segment. The kept vertices are then exactly what preparePoints() makes of them alone (Morton
- * order, dense ranks in PointSet::order, centred on their centroid). Inputs
- * and outputs are those of preparePoints(); call it before the kNN graph is built (knn and rim
- * empty).
- * \param[in,out] prepared    from preparePoints()
- * \param[in]     max_points  the resolution of the analysis, >= 1
- * \param[in]     num_threads threads for the nearest-point queries (>= 1); the result does not
- *                            depend on it
- * \return the number of points dropped (0: the cloud has at most max_points) */
-std::size_t subsamplePoints(PreparedPoints& prepared, std::size_t max_points, int num_threads);
+/** \brief preparePoints() at the resolution max_points: a cloud of more than max_points points
+ * is analysed on its evenSubset() alone, and every other point becomes a copy of its nearest kept
+ * point (Euclidean), so that it shares its segment. Only the kept points are ordered: in the
+ * order they have among all the points (Morton codes over the whole cloud's box), with dense
+ * ranks in PointSet::order by input index, centred on their centroid. The result does not
+ * depend on the order of the input.
+ * \param[in] xyz         n points, 3 floats each, finite; consumed
+ * \param[in] max_points  the resolution of the analysis; 0: none (preparePoints())
+ * \param[in] num_threads threads for the nearest-point queries (>= 1); the result does not
+ *                        depend on it */
+PreparedPoints prepareAtResolution(std::vector<float> xyz, std::size_t max_points, int num_threads);
 
 } // namespace pcl_ncut_seg

@@ -193,10 +193,11 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     xyz[3 * i + 1] = p.y;
     xyz[3 * i + 2] = p.z;
   }
-  pcl_ncut_seg::PreparedPoints prepared = pcl_ncut_seg::preparePoints(std::move(xyz));
-  if (params_.graph.max_points) // a dense cloud: analysed at the resolution of max_points
-    pcl_ncut_seg::subsamplePoints(prepared, static_cast<std::size_t>(*params_.graph.max_points),
-                                  pcl_ncut_seg::usableThreads(params_.execution.num_threads));
+  // A dense cloud: analysed at the resolution of max_points.
+  pcl_ncut_seg::PreparedPoints prepared = pcl_ncut_seg::prepareAtResolution(
+      std::move(xyz),
+      params_.graph.max_points ? static_cast<std::size_t>(*params_.graph.max_points) : 0,
+      pcl_ncut_seg::usableThreads(params_.execution.num_threads));
   const std::size_t n = prepared.point.size();
   point_index_.resize(n);
   for (std::size_t v = 0; v < n; ++v)
