@@ -108,8 +108,8 @@ struct CubeGrid {
 };
 
 /// Per point, its cube's slot in the returned table.
-CubeTable occupiedCubes(const float* raw, std::size_t m, std::size_t expected,
-                        const CubeGrid& grid, std::vector<std::uint32_t>& cube) {
+CubeTable occupiedCubes(const float* raw, std::size_t m, std::size_t expected, const CubeGrid& grid,
+                        std::vector<std::uint32_t>& cube) {
   CubeTable table(std::min(m, expected));
   cube.resize(m);
   for (std::size_t v = 0; v < m; ++v)
@@ -179,13 +179,11 @@ EvenCubes evenCubes(const float* raw, std::size_t m, std::size_t max_points) {
   return out;
 }
 
-/// The nearest kept point's vertex among the cubes within `reach` cubes of cell (vertex[c]: the
-/// vertex of cube c's kept point), ties to the smaller vertex; d2 its squared distance.
-std::uint32_t nearestWithin(const EvenCubes& cubes, const std::vector<std::uint32_t>& vertex,
-                            const float* raw_vertex, const float* p, const std::int64_t cell[3],
-                            int reach, double& d2) {
-  std::uint32_t best = kNone;
-  d2 = std::numeric_limits<double>::infinity();
+/// The vertices of the kept points of the cubes within `reach` cubes of cell (vertex[c]: the
+/// vertex of cube c's kept point).
+void keptAround(const EvenCubes& cubes, const std::vector<std::uint32_t>& vertex,
+                const std::int64_t cell[3], int reach, std::vector<std::uint32_t>& out) {
+  out.clear();
   std::int64_t at[3];
   for (at[0] = cell[0] - reach; at[0] <= cell[0] + reach; ++at[0])
     for (at[1] = cell[1] - reach; at[1] <= cell[1] + reach; ++at[1])
@@ -193,66 +191,102 @@ std::uint32_t nearestWithin(const EvenCubes& cubes, const std::vector<std::uint3
         if (std::min({at[0], at[1], at[2]}) < 0 || std::max({at[0], at[1], at[2]}) > kMaxCell)
           continue;
         const std::uint32_t c = cubes.table.find(CubeGrid::key(at));
-        if (c == kNone)
-          continue;
-        const float* q = raw_vertex + 3 * std::size_t(vertex[c]);
-        double s = 0.0;
-        for (int d = 0; d < 3; ++d)
-          s += (double(p[d]) - q[d]) * (double(p[d]) - q[d]);
-        if (s < d2 || (s == d2 && vertex[c] < best)) {
-          d2 = s;
-          best = vertex[c];
-        }
+        if (c != kNone)
+          out.push_back(vertex[c]);
       }
+}
+
+/// A candidate kept point: its position and vertex.
+struct Candidate {
+  float x, y, z;
+  std::uint32_t vertex;
+};
+
+/// The nearest of the candidates to p, ties to the smaller vertex; d2 its squared distance.
+std::uint32_t nearestOf(const Candidate* begin, const Candidate* end, const float* p, double& d2) {
+  std::uint32_t best = kNone;
+  d2 = std::numeric_limits<double>::infinity();
+  for (const Candidate* q = begin; q != end; ++q) {
+    const double dx = double(p[0]) - q->x, dy = double(p[1]) - q->y, dz = double(p[2]) - q->z;
+    const double s = dx * dx + dy * dy + dz * dz;
+    if (s < d2 || (s == d2 && q->vertex < best)) {
+      d2 = s;
+      best = q->vertex;
+    }
+  }
   return best;
 }
 
 /// Per dropped point, (point, the vertex of its nearest kept point), in index order: one pass
-/// over the points by cube. The kept points of a cube's 3 x 3 x 3 block are its candidates;
-/// any other kept point lies beyond the block's border, so the nearest candidate is the
-/// nearest kept point when it is no farther than that border. Otherwise (rarely: an even
-/// subset keeps each cube's point nearest its centre) the 5 x 5 x 5 block, which always holds
-/// it: the point's own cube's kept point is within sqrt(3) edges. Ties to the smaller vertex.
+/// over the points, in their order (their memory is read once, in sequence). The kept points
+/// of a point's cube's 3 x 3 x 3 block are its candidates; any other kept point lies beyond
+/// the block's border, so the nearest candidate is the nearest kept point when it is no
+/// farther than that border. Otherwise (rarely: an even subset keeps each cube's point nearest
+/// its centre) the 5 x 5 x 5 block, which always holds it: the point's own cube's kept point is
+/// within sqrt(3) edges. Ties to the smaller vertex.
 std::vector<std::pair<std::uint32_t, std::uint32_t>>
 nearestKept(const float* raw, std::size_t n, const EvenCubes& cubes,
             const std::vector<std::uint32_t>& vertex, const float* raw_vertex, int num_threads) {
   const std::size_t c = cubes.kept.size();
-  std::vector<std::uint32_t> begin(c + 1, 0), member(n);
-  for (std::size_t v = 0; v < n; ++v)
-    ++begin[cubes.cube[v] + 1];
-  std::partial_sum(begin.begin(), begin.end(), begin.begin());
+  const auto candidate = [&](std::uint32_t u) {
+    const float* q = raw_vertex + 3 * std::size_t(u);
+    return Candidate{q[0], q[1], q[2], u};
+  };
+  // Per cube, the kept points of its block (cubes in parallel, then concatenated in order).
+  std::vector<std::vector<Candidate>> around(c);
+#pragma omp parallel num_threads(num_threads)
   {
-    std::vector<std::uint32_t> fill(begin.begin(), begin.end() - 1);
-    for (std::size_t v = 0; v < n; ++v)
-      member[fill[cubes.cube[v]]++] = static_cast<std::uint32_t>(v);
+    std::vector<std::uint32_t> block;
+#pragma omp for schedule(dynamic, 256)
+    for (std::ptrdiff_t ci = 0; ci < static_cast<std::ptrdiff_t>(c); ++ci) {
+      std::int64_t cell[3];
+      CubeGrid::cellOf(cubes.table.keyOf(static_cast<std::uint32_t>(ci)), cell);
+      keptAround(cubes, vertex, cell, 1, block);
+      for (const std::uint32_t u : block)
+        around[ci].push_back(candidate(u));
+    }
+  }
+  std::vector<std::size_t> begin(c + 1, 0);
+  for (std::size_t i = 0; i < c; ++i)
+    begin[i + 1] = begin[i] + around[i].size();
+  std::vector<Candidate> flat;
+  flat.reserve(begin[c]);
+  for (auto& list : around) {
+    flat.insert(flat.end(), list.begin(), list.end());
+    std::vector<Candidate>().swap(list);
   }
   std::vector<std::uint32_t> nearest(n, kNone);
   const CubeGrid& grid = cubes.grid;
 #pragma omp parallel num_threads(num_threads)
   {
-    std::vector<std::uint32_t> candidates;
-#pragma omp for schedule(dynamic, 256)
-    for (std::ptrdiff_t ci = 0; ci < static_cast<std::ptrdiff_t>(c); ++ci) {
-      const auto cube = static_cast<std::uint32_t>(ci);
+    std::vector<std::uint32_t> block;
+    std::vector<Candidate> wide;
+#pragma omp for schedule(static, 65536)
+    for (std::ptrdiff_t vi = 0; vi < static_cast<std::ptrdiff_t>(n); ++vi) {
+      const auto v = static_cast<std::uint32_t>(vi);
+      const std::uint32_t cube = cubes.cube[v];
+      if (v == cubes.kept[cube])
+        continue;
+      const float* p = raw + 3 * std::size_t(v);
       std::int64_t cell[3];
       CubeGrid::cellOf(cubes.table.keyOf(cube), cell);
-      for (std::uint32_t i = begin[cube]; i < begin[cube + 1]; ++i) {
-        const std::uint32_t v = member[i];
-        if (v == cubes.kept[cube])
-          continue;
-        const float* p = raw + 3 * std::size_t(v);
-        double margin = 1.0; // to the nearer face of its cube, in edges
-        for (int d = 0; d < 3; ++d) {
-          const double f = (p[d] - grid.lo[d]) / grid.edge - static_cast<double>(cell[d]);
-          margin = std::min({margin, f, 1.0 - f});
-        }
-        const double border = grid.edge * (1.0 + std::max(margin, 0.0)) * (1.0 - 1e-9);
-        double d2 = 0.0;
-        std::uint32_t best = nearestWithin(cubes, vertex, raw_vertex, p, cell, 1, d2);
-        if (!(d2 <= border * border))
-          best = nearestWithin(cubes, vertex, raw_vertex, p, cell, 2, d2);
-        nearest[v] = best;
+      double margin = 1.0; // to the nearer face of its cube, in edges
+      for (int d = 0; d < 3; ++d) {
+        const double f = (p[d] - grid.lo[d]) / grid.edge - static_cast<double>(cell[d]);
+        margin = std::min({margin, f, 1.0 - f});
       }
+      const double border = grid.edge * (1.0 + std::max(margin, 0.0)) * (1.0 - 1e-9);
+      double d2 = 0.0;
+      std::uint32_t best =
+          nearestOf(flat.data() + begin[cube], flat.data() + begin[cube + 1], p, d2);
+      if (!(d2 <= border * border)) {
+        keptAround(cubes, vertex, cell, 2, block);
+        wide.clear();
+        for (const std::uint32_t u : block)
+          wide.push_back(candidate(u));
+        best = nearestOf(wide.data(), wide.data() + wide.size(), p, d2);
+      }
+      nearest[v] = best;
     }
   }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> copies;
