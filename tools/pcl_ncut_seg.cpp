@@ -117,7 +117,7 @@ std::size_t fieldSize(const pcl::PCLPointField& f) {
  * input except an old label, then label. rgb is packed into a float as pcl::PointXYZRGB stores
  * it (alpha 0), so pcl_viewer colours the points by segment; label 0 is black. */
 pcl::PCLPointCloud2 makeOutput(const pcl::PCLPointCloud2& input,
-                               const pcl::PointCloud<pcl::PointXYZL>& labeled, bool keep_fields) {
+                               const std::vector<std::uint32_t>& labels, bool keep_fields) {
   pcl::PCLPointCloud2 blob;
   blob.header = input.header;
   blob.width = input.width;
@@ -148,14 +148,14 @@ pcl::PCLPointCloud2 makeOutput(const pcl::PCLPointCloud2& input,
   const std::size_t label_offset = blob.point_step - 4;
   blob.row_step = blob.point_step * blob.width;
 
-  const std::size_t n = labeled.size();
+  const std::size_t n = labels.size();
   blob.data.resize(static_cast<std::size_t>(blob.point_step) * n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t* in = &input.data[i * input.point_step];
     std::uint8_t* out = &blob.data[i * blob.point_step];
     for (const Copy& c : copies)
       std::memcpy(out + c.to, in + c.from, c.size);
-    const std::uint32_t label = labeled[i].label;
+    const std::uint32_t label = labels[i];
     if (!keep_fields) {
       std::uint8_t r = 0, g = 0, b = 0; // black for points in no segment
       if (label != 0)
@@ -276,8 +276,7 @@ void announceInput(const Command& cmd, const Input& input) {
 
 /** Segment the input; false with one error line when there is no result. */
 bool segment(const Command& cmd, const Input& input, ProgressBar& progress, Segmenter& seg,
-             std::vector<pcl::PointIndices>& segments,
-             pcl::PointCloud<pcl::PointXYZL>::Ptr& labeled) {
+             std::vector<pcl::PointIndices>& segments, std::vector<std::uint32_t>& labels) {
   seg.setInputCloud(input.cloud);
   seg.setProgressCallback(progress.callback());
   try {
@@ -290,11 +289,12 @@ bool segment(const Command& cmd, const Input& input, ProgressBar& progress, Segm
     fail("segmentation of '" + cmd.input_path + "' produced no segments");
     return false;
   }
-  labeled = seg.getLabeledCloud();
-  if (!labeled || labeled->size() != input.cloud->size()) {
-    fail("segmentation of '" + cmd.input_path + "' returned no labelled cloud");
-    return false;
-  }
+  // Label s + 1 for the points of segment s (getLabeledCloud()'s labels, without its copy of
+  // the points), 0 for points in none.
+  labels.assign(input.cloud->size(), 0);
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    for (const auto i : segments[s].indices)
+      labels[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(s + 1);
   return true;
 }
 
@@ -356,12 +356,12 @@ void printReport(const Segmenter& seg, std::size_t num_segments) {
 
 /** -split: each segment to PREFIX_<label>.pcd, labels zero-padded to the same width. */
 bool writeSegmentFiles(const Command& cmd, const pcl::PCLPointCloud2& blob,
-                       const pcl::PointCloud<pcl::PointXYZL>& labeled, std::size_t num_segments,
+                       const std::vector<std::uint32_t>& labels, std::size_t num_segments,
                        Outputs& outputs) {
   std::vector<std::vector<std::size_t>> members(num_segments);
-  for (std::size_t i = 0; i < labeled.size(); ++i)
-    if (labeled[i].label != 0)
-      members[labeled[i].label - 1].push_back(i);
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    if (labels[i] != 0)
+      members[labels[i] - 1].push_back(i);
   const int digits = static_cast<int>(std::to_string(num_segments).size());
   for (std::size_t s = 0; s < num_segments; ++s) {
     char number[32];
@@ -376,13 +376,12 @@ bool writeSegmentFiles(const Command& cmd, const pcl::PCLPointCloud2& blob,
 }
 
 /** Write every output, then give them their names, only once all are complete. */
-bool writeOutputs(const Command& cmd, const Input& input,
-                  const pcl::PointCloud<pcl::PointXYZL>& labeled, std::size_t num_segments,
-                  ProgressBar& progress, Outputs& outputs) {
+bool writeOutputs(const Command& cmd, const Input& input, const std::vector<std::uint32_t>& labels,
+                  std::size_t num_segments, ProgressBar& progress, Outputs& outputs) {
   progress.update("Write", 0.0);
-  const pcl::PCLPointCloud2 blob = makeOutput(input.blob, labeled, cmd.keep_fields);
+  const pcl::PCLPointCloud2 blob = makeOutput(input.blob, labels, cmd.keep_fields);
   if (!writePcd(outputs.labelled, blob, cmd.encoding) ||
-      (!cmd.split_prefix.empty() && !writeSegmentFiles(cmd, blob, labeled, num_segments, outputs)))
+      (!cmd.split_prefix.empty() && !writeSegmentFiles(cmd, blob, labels, num_segments, outputs)))
     return false;
   if (!outputs.labelled.commit())
     return false;
@@ -436,9 +435,9 @@ int main(int argc, char** argv) {
   if (!readInput(cmd, progress, input) || !claimOutputs(cmd, outputs))
     return 1;
   announceInput(cmd, input);
-  pcl::PointCloud<pcl::PointXYZL>::Ptr labeled;
-  if (!segment(cmd, input, progress, seg, segments, labeled))
+  std::vector<std::uint32_t> labels;
+  if (!segment(cmd, input, progress, seg, segments, labels))
     return 1;
   printReport(seg, segments.size());
-  return writeOutputs(cmd, input, *labeled, segments.size(), progress, outputs) ? 0 : 1;
+  return writeOutputs(cmd, input, labels, segments.size(), progress, outputs) ? 0 : 1;
 }
