@@ -232,29 +232,28 @@ nearestKept(const float* raw, std::size_t n, const EvenCubes& cubes,
     const float* q = raw_vertex + 3 * std::size_t(u);
     return Candidate{q[0], q[1], q[2], u};
   };
-  // Per cube, the kept points of its block (cubes in parallel, then concatenated in order).
-  std::vector<std::vector<Candidate>> around(c);
+  // Per cube, the kept points of its block: at most 27, found in parallel, then packed.
+  std::vector<std::uint32_t> block27(27 * c);
+  std::vector<std::size_t> begin(c + 1, 0);
 #pragma omp parallel num_threads(num_threads)
   {
     std::vector<std::uint32_t> block;
-#pragma omp for schedule(dynamic, 256)
+#pragma omp for schedule(static, 1024)
     for (std::ptrdiff_t ci = 0; ci < static_cast<std::ptrdiff_t>(c); ++ci) {
       std::int64_t cell[3];
       CubeGrid::cellOf(cubes.table.keyOf(static_cast<std::uint32_t>(ci)), cell);
       keptAround(cubes, vertex, cell, 1, block);
-      for (const std::uint32_t u : block)
-        around[ci].push_back(candidate(u));
+      std::copy(block.begin(), block.end(), block27.begin() + 27 * ci);
+      begin[ci + 1] = block.size();
     }
   }
-  std::vector<std::size_t> begin(c + 1, 0);
-  for (std::size_t i = 0; i < c; ++i)
-    begin[i + 1] = begin[i] + around[i].size();
-  std::vector<Candidate> flat;
-  flat.reserve(begin[c]);
-  for (auto& list : around) {
-    flat.insert(flat.end(), list.begin(), list.end());
-    std::vector<Candidate>().swap(list);
-  }
+  std::partial_sum(begin.begin(), begin.end(), begin.begin());
+  std::vector<Candidate> flat(begin[c]);
+#pragma omp parallel for num_threads(num_threads) schedule(static, 1024)
+  for (std::ptrdiff_t ci = 0; ci < static_cast<std::ptrdiff_t>(c); ++ci)
+    for (std::size_t j = 0; j < begin[ci + 1] - begin[ci]; ++j)
+      flat[begin[ci] + j] = candidate(block27[27 * ci + j]);
+  std::vector<std::uint32_t>().swap(block27);
   std::vector<std::uint32_t> nearest(n, kNone);
   const CubeGrid& grid = cubes.grid;
 #pragma omp parallel num_threads(num_threads)
