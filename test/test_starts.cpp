@@ -60,6 +60,20 @@ TEST(Starts, PairDisagreementsCountThePairsSplitDifferently) {
   EXPECT_EQ(pairDisagreements({0, 0, 1, 1}, {7, 7, 3, 3}), 0u); // the same partition
   EXPECT_EQ(pairDisagreements({0, 0, 0, 0}, {0, 1, 2, 3}), 6u); // every pair
   EXPECT_EQ(pairDisagreements({}, {}), 0u);
+  // Many labels (the sorting path) and few (the table of label pairs) count alike.
+  std::vector<std::uint32_t> few_a(5000), few_b(5000), many_a(5000), many_b(5000);
+  for (std::uint32_t i = 0; i < 5000; ++i) {
+    few_a[i] = (i * 7919u) % 13u;
+    few_b[i] = (i * 104729u) % 17u;
+    many_a[i] = few_a[i] * 100000u; // the same partitions under labels too large for a table
+    many_b[i] = few_b[i] * 100000u + 7u;
+  }
+  std::uint64_t brute = 0;
+  for (std::size_t i = 0; i < 5000; ++i)
+    for (std::size_t j = i + 1; j < 5000; ++j)
+      brute += (few_a[i] == few_a[j]) != (few_b[i] == few_b[j]);
+  EXPECT_EQ(pairDisagreements(few_a, few_b), brute);
+  EXPECT_EQ(pairDisagreements(many_a, many_b), brute);
 }
 
 TEST(Starts, TheMedoidIsThePartitionClosestToTheOthers) {

@@ -55,6 +55,27 @@ std::vector<std::uint32_t> centralRanks(const float* xyz, std::size_t n,
 std::uint64_t pairDisagreements(const std::vector<std::uint32_t>& a,
                                 const std::vector<std::uint32_t>& b) {
   const std::size_t n = std::min(a.size(), b.size());
+  if (n == 0)
+    return 0;
+  const std::uint64_t ta = 1u + *std::max_element(a.begin(), a.begin() + n);
+  const std::uint64_t tb = 1u + *std::max_element(b.begin(), b.begin() + n);
+  if (ta * tb <= n + 4096) {
+    // Few labels (segments): pairs counted from the table of label pairs, in O(n), no sort.
+    std::vector<std::uint64_t> count_a(ta, 0), count_b(tb, 0), joint(ta * tb, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      ++count_a[a[i]];
+      ++count_b[b[i]];
+      ++joint[a[i] * tb + b[i]];
+    }
+    const auto pairs = [](const std::vector<std::uint64_t>& counts) {
+      std::uint64_t sum = 0;
+      for (const std::uint64_t c : counts)
+        if (c > 1)
+          sum += c * (c - 1) / 2;
+      return sum;
+    };
+    return pairs(count_a) + pairs(count_b) - 2 * pairs(joint);
+  }
   std::vector<std::uint64_t> keys(a.begin(), a.begin() + n);
   const std::uint64_t together_a = pairsWithin(keys);
   keys.assign(b.begin(), b.begin() + n);
