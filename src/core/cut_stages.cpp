@@ -81,21 +81,31 @@ double viewArea(const std::vector<float>& radii) {
 }
 // The paper's small (Sec. 4.3): a part of 1% of the object's area.
 constexpr double kSmallPart = 0.01;
+
+/// The paper's small part of a view's object, in feature area: the object's area is at least
+/// twice the view's (a view shows at most half of a closed surface).
+double smallPartArea(const std::vector<float>& radii) {
+  return kSmallPart * 2.0 * viewArea(radii);
+}
+
+/// Half the width of the smallest part the paper keeps, in feature area (the discs overlap:
+/// wider than the part's true half-width).
+double halfWidth(double small_part_area) {
+  return 0.5 * std::sqrt(small_part_area);
+}
 } // namespace
 
 double rimBandWidth(const std::vector<float>& radii) {
-  // Half the width of the smallest part the paper keeps, in feature area (the discs overlap:
-  // wider than the part's true half-width); the object's area is at least twice the view's
-  // (a view shows at most half of a closed surface).
-  return 0.5 * std::sqrt(kSmallPart * 2.0 * viewArea(radii));
+  return halfWidth(smallPartArea(radii));
 }
 
 void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   if (a.cad || !params.rim_merge || a.rim.empty() || a.rim_xyz.empty())
     return;
+  const double small_part = smallPartArea(a.radii);
   const std::vector<std::uint32_t> map =
       mergeAcrossRim(*a.graph, a.rim, a.rim_xyz, a.rim_normals, *params.rim_merge,
-                     rimBandWidth(a.radii), r.point_segment, r.num_segments);
+                     halfWidth(small_part), r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < map.size())
       s = map[s];
@@ -105,8 +115,7 @@ void rimStage(const Analysis& a, const BoundaryParams& params, CutResult& r) {
   for (std::size_t p = 0; p < area.size(); ++p)
     area[p] = pointArea(a.radii[p]);
   const std::vector<std::uint32_t> joined =
-      joinSmallSegments(*a.graph, area, kSmallPart * 2.0 * viewArea(a.radii), kLimbNeck,
-                        r.point_segment, r.num_segments);
+      joinSmallSegments(*a.graph, area, small_part, kLimbNeck, r.point_segment, r.num_segments);
   for (auto& s : r.supernode_segment)
     if (s < joined.size())
       s = joined[s];
