@@ -12,12 +12,10 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "bench_peers.h"
 #include "mesh_sampling.h"
 #include "peak_memory.h"
 #include "timing.h"
-
-#include <pcl/segmentation/lccp_segmentation.h>
-#include <pcl/segmentation/supervoxel_clustering.h>
 
 #include <malloc.h>
 #include <unistd.h>
@@ -98,25 +96,8 @@ int runOne(const std::string& path, std::size_t n, const std::string& method, in
     // PCL's part segmenter as its tutorial runs it: supervoxels (with their normal estimate
     // per voxel) then LCCP over the supervoxel adjacency; resolutions relative to the model.
     const double start = now();
-    const float voxel = static_cast<float>(diagonal / 100.0);
-    pcl::SupervoxelClustering<pcl::PointXYZ> super(voxel, 4.0f * voxel);
-    super.setUseSingleCameraTransform(false);
-    super.setInputCloud(cloud);
-    super.setColorImportance(0.0f);
-    super.setSpatialImportance(1.0f);
-    super.setNormalImportance(4.0f);
-    std::map<std::uint32_t, pcl::Supervoxel<pcl::PointXYZ>::Ptr> clusters;
-    super.extract(clusters);
-    std::multimap<std::uint32_t, std::uint32_t> adjacency;
-    super.getSupervoxelAdjacency(adjacency);
-    pcl::LCCPSegmentation<pcl::PointXYZ> lccp;
-    lccp.setConcavityToleranceThreshold(10.0f);
-    lccp.setSmoothnessCheck(true, voxel, 4.0f * voxel, 0.1f);
-    lccp.setKFactor(0);
-    lccp.setInputSupervoxels(clusters, adjacency);
-    lccp.segment();
-    pcl::PointCloud<pcl::PointXYZL>::Ptr labels = super.getLabeledCloud();
-    lccp.relabelCloud(*labels);
+    const pcl::PointCloud<pcl::PointXYZL>::Ptr labels =
+        pcl_ncut_seg_bench::lccpWholeModel(cloud, static_cast<float>(diagonal / 100.0));
     std::map<std::uint32_t, int> segments;
     for (const auto& p : *labels)
       segments[p.label] = 1;

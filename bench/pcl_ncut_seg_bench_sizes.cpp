@@ -16,6 +16,7 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "bench_peers.h"
 #include "depth_view_pcl.h"
 #include "mesh_sampling.h"
 #include "peak_memory.h"
@@ -24,8 +25,6 @@
 
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
-#include <pcl/segmentation/lccp_segmentation.h>
-#include <pcl/segmentation/supervoxel_clustering.h>
 
 #include <malloc.h>
 #include <unistd.h>
@@ -99,28 +98,9 @@ Labelled::Ptr lccpView(const Cloud& cloud) {
   return out;
 }
 
-/// LCCP on a whole model as pcl_ncut_seg_bench runs it (supervoxels estimate their normals).
+/// LCCP on a whole model as pcl_ncut_seg_bench runs it (voxels of 1% of the diagonal).
 Labelled::Ptr lccpModel(const Cloud::Ptr& cloud) {
-  const auto voxel = static_cast<float>(diagonalOf(*cloud) / 100.0);
-  pcl::SupervoxelClustering<pcl::PointXYZ> super(voxel, 4.0f * voxel);
-  super.setUseSingleCameraTransform(false);
-  super.setInputCloud(cloud);
-  super.setColorImportance(0.0f);
-  super.setSpatialImportance(1.0f);
-  super.setNormalImportance(4.0f);
-  std::map<std::uint32_t, pcl::Supervoxel<pcl::PointXYZ>::Ptr> clusters;
-  super.extract(clusters);
-  std::multimap<std::uint32_t, std::uint32_t> adjacency;
-  super.getSupervoxelAdjacency(adjacency);
-  pcl::LCCPSegmentation<pcl::PointXYZ> lccp;
-  lccp.setConcavityToleranceThreshold(10.0f);
-  lccp.setSmoothnessCheck(true, voxel, 4.0f * voxel, 0.1f);
-  lccp.setKFactor(0);
-  lccp.setInputSupervoxels(clusters, adjacency);
-  lccp.segment();
-  Labelled::Ptr labels = super.getLabeledCloud();
-  lccp.relabelCloud(*labels);
-  return labels;
+  return pcl_ncut_seg_bench::lccpWholeModel(cloud, static_cast<float>(diagonalOf(*cloud) / 100.0));
 }
 
 /// Child: read `in`, segment it with `method`, write the labelled cloud to `out`; print
@@ -218,23 +198,14 @@ double fitExponent(const std::vector<std::pair<double, double>>& points) {
   return (k * sxy - sx * sy) / (k * sxx - sx * sx);
 }
 
-/// pcl_ncut_seg_bench_views' "(a) bunny alone": the view with about `pixels` valid pixels.
-pcl_ncut_seg::DepthView objectView(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t pixels) {
-  pcl_ncut_seg::CameraSettings cam;
-  const std::uint64_t seed = pcl_ncut_seg::viewSeed(1, 0);
-  const auto first = pcl_ncut_seg::renderView(mesh, cam, seed);
-  // The image of an object shrinks with the square of its distance.
-  cam.distance *= std::sqrt(static_cast<double>(first.validPixels()) / pixels);
-  return pcl_ncut_seg::renderView(mesh, cam, seed);
-}
-
 /// Writes the cloud of `size` to `path` as a binary PCD (untimed); returns its points, 0 on
 /// failure.
 std::size_t writeCloud(const Size& size, const pcl_ncut_seg::TriangleMesh& bunny,
                        const pcl_ncut_seg::TriangleMesh& hand, const std::string& path) {
   Cloud cloud;
   if (size.view) { // the view's valid points: the crop a tabletop pipeline hands over
-    const Cloud::Ptr frame = pcl_ncut_seg::toPclCloud(objectView(bunny, size.n));
+    const Cloud::Ptr frame =
+        pcl_ncut_seg::toPclCloud(pcl_ncut_seg_bench::objectView(bunny, size.n));
     for (const auto& p : *frame)
       if (std::isfinite(p.x))
         cloud.push_back(p);

@@ -9,14 +9,15 @@
  *      1 m, 60 degrees down: every pixel valid.
  * Ours runs with the defaults on the organized cloud (NaNs included) and on its valid points
  * alone (unorganized, sensor origin kept: the crop a tabletop pipeline hands over), on one
- * thread and on all cores; LCCP as the evaluator runs it (eval/psb_peers.h: normals towards the sensor,
- * supervoxels, LCCP) with the resolutions of PCL's LCCP tutorial (voxels of 7.5 mm, seeds of
- * 3 cm), on the valid points. Prints the wall time of each (the median of 5 runs); skips when
+ * thread and on all cores; LCCP as the evaluator runs it (eval/psb_peers.h: normals towards the
+ * sensor, supervoxels, LCCP) with the resolutions of PCL's LCCP tutorial (voxels of 7.5 mm, seeds
+ * of 3 cm), on the valid points. Prints the wall time of each (the median of 5 runs); skips when
  * the data is absent.
  */
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
+#include "bench_peers.h"
 #include "depth_view_pcl.h"
 #include "psb_peers.h"
 #include "timing.h"
@@ -49,16 +50,6 @@ std::vector<float> validPoints(const pcl_ncut_seg::DepthView& view) {
     if (view.face[i] >= 0)
       xyz.insert(xyz.end(), view.xyz.begin() + 3 * i, view.xyz.begin() + 3 * i + 3);
   return xyz;
-}
-
-/** (a): the object alone, at the distance that gives it about `pixels` valid pixels. */
-pcl_ncut_seg::DepthView objectView(const pcl_ncut_seg::TriangleMesh& mesh, std::size_t pixels) {
-  pcl_ncut_seg::CameraSettings cam;
-  const std::uint64_t seed = pcl_ncut_seg::viewSeed(1, 0);
-  const auto first = pcl_ncut_seg::renderView(mesh, cam, seed);
-  // The image of an object shrinks with the square of its distance.
-  cam.distance *= std::sqrt(static_cast<double>(first.validPixels()) / pixels);
-  return pcl_ncut_seg::renderView(mesh, cam, seed);
 }
 
 /** (b): the object (0.3 m) standing on a 4 m table, seen from 1 m, 60 degrees down. */
@@ -216,8 +207,8 @@ OursRun medianOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, Form f
 void printRow(const char* name, std::size_t points, const OursRun& one, const OursRun& all,
               unsigned cores, const Seconds& lccp, std::size_t lccp_segments) {
   std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name, points,
-              one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall, lccp.cpu,
-              one.segments, lccp_segments);
+              one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall, lccp.cpu, one.segments,
+              lccp_segments);
 }
 
 void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
@@ -228,7 +219,8 @@ void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cor
   const OursRun crop_one = medianOurs(view, 1, Form::kCrop),
                 crop_all = medianOurs(view, 0, Form::kCrop);
   printRow(name, view.validPixels(), one, all, cores, lccp, lccp_segments);
-  printRow("    its crop (unorganized)", view.validPixels(), crop_one, crop_all, cores, lccp, lccp_segments);
+  printRow("    its crop (unorganized)", view.validPixels(), crop_one, crop_all, cores, lccp,
+           lccp_segments);
   printPhases("ours, 1 thread:", one.phases, one.segments);
   printPhases("ours, all cores:", all.phases, all.segments);
   printPhases("ours, OrganizedNeighbor search:", grid.phases, grid.segments);
@@ -263,7 +255,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
-  const pcl_ncut_seg::DepthView object = objectView(mesh, 20000);
+  const pcl_ncut_seg::DepthView object = pcl_ncut_seg_bench::objectView(mesh, 20000);
   const pcl_ncut_seg::DepthView frame = tableView(mesh);
   const unsigned cores = std::max(1u, static_cast<unsigned>(sysconf(_SC_NPROCESSORS_ONLN)));
   std::printf("pcl_ncut_seg_bench_views: 640 x 480 frames, load average %s, max_points %s\n",
