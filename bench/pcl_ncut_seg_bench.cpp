@@ -13,6 +13,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
+#include "child_run.h"
 #include "mesh_sampling.h"
 #include "peak_memory.h"
 #include "timing.h"
@@ -127,47 +128,14 @@ int runOne(const std::string& path, std::size_t n, const std::string& method, in
   return 0;
 }
 
-using Result = std::map<std::string, double>;
+using pcl_ncut_seg_bench::Result;
 
 /// Parent: run a child and parse its line.
 bool measure(const std::string& self, const std::string& path, std::size_t n,
              const std::string& method, int threads, Result& result) {
   const std::string command = "'" + self + "' --run '" + path + "' " + std::to_string(n) + " " +
                               method + " " + std::to_string(threads);
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-    return false;
-  char buffer[1024];
-  std::string line;
-  while (std::fgets(buffer, sizeof buffer, pipe))
-    line += buffer;
-  if (pclose(pipe) != 0)
-    return false;
-  std::istringstream in(line);
-  std::string field;
-  result.clear();
-  while (in >> field) {
-    const auto eq = field.find('=');
-    if (eq != std::string::npos)
-      result[field.substr(0, eq)] = std::strtod(field.c_str() + eq + 1, nullptr);
-  }
-  return result.count("total") > 0;
-}
-
-/// Least-squares slope of log(y) against log(n) over the points with y >= 1 ms.
-double fitExponent(const std::vector<std::pair<double, double>>& points, int* used) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int k = 0;
-  for (const auto& [n, y] : points) {
-    if (y < 1e-3)
-      continue;
-    const double x = std::log(n), v = std::log(y);
-    sx += x, sy += v, sxx += x * x, sxy += x * v, ++k;
-  }
-  *used = k;
-  if (k < 2 || sxx * k - sx * sx <= 0)
-    return NAN;
-  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  return pcl_ncut_seg_bench::runChild(command, result) && result.count("total") > 0;
 }
 
 void printHelp(const char* name) {
@@ -266,7 +234,7 @@ int main(int argc, char** argv) {
         if (results[method][i].count(phase))
           points.emplace_back(static_cast<double>(rows[i].n), results[method][i][phase]);
       int used = 0;
-      const double a = fitExponent(points, &used);
+      const double a = pcl_ncut_seg_bench::fitExponent(points, &used);
       if (std::isnan(a))
         std::printf(" %6s", "-");
       else

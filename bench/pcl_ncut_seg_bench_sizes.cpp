@@ -17,6 +17,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
+#include "child_run.h"
 #include "depth_view_pcl.h"
 #include "mesh_sampling.h"
 #include "peak_memory.h"
@@ -153,49 +154,16 @@ int runOne(const std::string& in, const std::string& out, const std::string& met
   return 0;
 }
 
-using Result = std::map<std::string, double>;
+using pcl_ncut_seg_bench::Result;
 
 /// Parent: run a child on `in` and parse its line; the child's output file is removed.
 bool measure(const std::string& self, const std::string& in, const std::string& out,
              const std::string& method, bool view, unsigned threads, Result& result) {
   const std::string command = "'" + self + "' --run '" + in + "' '" + out + "' " + method + " " +
                               (view ? "view" : "model") + " " + std::to_string(threads);
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-    return false;
-  char buffer[1024];
-  std::string line;
-  while (std::fgets(buffer, sizeof buffer, pipe))
-    line += buffer;
-  const int status = pclose(pipe);
+  const bool ran = pcl_ncut_seg_bench::runChild(command, result);
   std::filesystem::remove(out);
-  if (status != 0)
-    return false;
-  std::istringstream fields(line);
-  std::string field;
-  result.clear();
-  while (fields >> field) {
-    const auto eq = field.find('=');
-    if (eq != std::string::npos)
-      result[field.substr(0, eq)] = std::strtod(field.c_str() + eq + 1, nullptr);
-  }
-  return result.count("whole") > 0;
-}
-
-/// Least-squares slope of log(y) against log(n) over the points with y >= 1 ms (as
-/// pcl_ncut_seg_bench fits its scaling).
-double fitExponent(const std::vector<std::pair<double, double>>& points) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int k = 0;
-  for (const auto& [n, y] : points) {
-    if (y < 1e-3)
-      continue;
-    const double x = std::log(n), v = std::log(y);
-    sx += x, sy += v, sxx += x * x, sxy += x * v, ++k;
-  }
-  if (k < 2 || sxx * k - sx * sx <= 0)
-    return NAN;
-  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  return ran && result.count("whole") > 0;
 }
 
 /// Writes the cloud of `size` to `path` as a binary PCD (untimed); returns its points, 0 on
@@ -384,7 +352,7 @@ int main(int argc, char** argv) {
     }
     std::printf("  %-4s", method == "ours" ? "ours" : "LCCP");
     for (const auto* points : {&all, &hand}) {
-      const double a = fitExponent(*points);
+      const double a = pcl_ncut_seg_bench::fitExponent(*points);
       char text[16] = "-";
       if (!std::isnan(a))
         std::snprintf(text, sizeof text, "%.2f", a);
