@@ -157,6 +157,11 @@ TEST(CoarseCentrality, IsExactWhenTheGraphIsSmall) {
   const Centrality coarse = computeCoarseCentrality(g, 900, 0, 1);
   EXPECT_EQ(exact.f, coarse.f);
   EXPECT_EQ(exact.samples, coarse.samples);
+  // Up to 1.25 times the representatives a coarse graph does not pay: exact too.
+  const CsrGraph h = knnGraph(test::randomPoints(1125, 5));
+  EXPECT_FALSE(coarseGraphPays(1125, 900));
+  EXPECT_EQ(computeCoarseCentrality(h, 900, 0, 1).f, computeCentrality(h, 0, 1).f);
+  EXPECT_TRUE(coarseGraphPays(1126, 900));
 }
 
 TEST(CoarseCentrality, IsCloseToExactAndIndependentOfThreads) {
@@ -212,10 +217,10 @@ TEST(CentralityMode, SetterChecksAndBothModesSegment) {
   seg.setCentralityMode(CentralityMode::Exact);
   EXPECT_EQ(seg.getCentralityMode(), CentralityMode::Exact);
 
-  // 24000 points: the Fast mode runs on a coarse graph (kFastCentralityRepresentatives); both
+  // 30000 points: the Fast mode runs on a coarse graph (kFastCentralityRepresentatives); both
   // give the hand's 6 parts, the same labels on one thread and on two.
-  ASSERT_LT(kFastCentralityRepresentatives, 24000u);
-  const test::LabeledShape hand = test::makeHand(24000, 2);
+  ASSERT_TRUE(coarseGraphPays(30000, kFastCentralityRepresentatives));
+  const test::LabeledShape hand = test::makeHand(30000, 2);
   seg.setInputCloud(hand.cloud);
   seg.setNumberOfSegments(6);
   std::vector<pcl::PointIndices> exact, fast, fast_two;

@@ -273,7 +273,7 @@ std::vector<Centrality> computeCoarseCentralities(const CsrGraph& graph,
                                                   const ProgressFn& progress,
                                                   std::size_t num_starts) {
   const std::size_t n = graph.numVertices();
-  if (num_representatives == 0 || n <= num_representatives)
+  if (!coarseGraphPays(n, num_representatives))
     return computeCentralities(graph, num_samples, num_threads, tie_rank, progress, num_starts);
 
   const CsrGraph& g = graph;

@@ -67,7 +67,8 @@ void centralityRows(Rows& t) {
   t.push_back(choice<CentralityMode>(
       row("centrality", "centrality.mode", S::Centrality, K::Choice, "MODE",
           "exact: eq. (1) with searches over the whole kNN graph, as the paper; fast: on a "
-          "coarse graph of 20,000 representatives, carried back to every point",
+          "coarse graph of 20,000 representatives, carried back to every point (exact up to "
+          "25,000 points)",
           false),
       {"exact", "fast"}, FIELD(centrality.mode)));
   t.push_back(number<int, int>(

@@ -11,6 +11,13 @@ namespace pcl_ncut_seg {
 /// exact one's at a fraction of its searches (test_shortest_paths measures both).
 constexpr std::size_t kFastCentralityRepresentatives = 20000;
 
+/// Whether a coarse graph of about num_representatives vertices pays for n: its cover settles on
+/// 0.8-1.25 times that many, so up to 1.25 times as many points it could keep them all, and its
+/// searches would cost what the exact ones do, with the cover and the carrying back on top.
+inline bool coarseGraphPays(std::size_t n, std::size_t num_representatives) {
+  return num_representatives > 0 && n > num_representatives + num_representatives / 4;
+}
+
 /** \brief The default centrality: eq. (1) computed exactly (as computeCentrality()) on a
  * coarse graph of about num_representatives vertices, then carried back to every point.
  *
@@ -29,7 +36,7 @@ constexpr std::size_t kFastCentralityRepresentatives = 20000;
  *    keeps its slope and gains no plateaus or spurious extrema at the representatives. A
  *    component with a single representative gets f(p) = d1 (its one sample's distance).
  *
- * With n <= num_representatives (or num_representatives == 0) this is computeCentrality().
+ * When !coarseGraphPays(n, num_representatives) this is computeCentrality().
  * Samples are returned as vertex ids of the input graph. Deterministic for any number of
  * threads.
  */
