@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace pcl_ncut_seg {
 
@@ -223,15 +224,17 @@ bool onRim(const CsrGraph& graph, const float* xyz, const Rays& rays, std::uint3
   return gaps.wide();
 }
 
-/// Rule 2 for every vertex.
-std::vector<std::uint8_t> rimFlags(const CsrGraph& graph, const float* xyz, const Rays& rays,
-                                   int threads) {
-  const auto sn = static_cast<std::int64_t>(graph.numVertices());
-  std::vector<std::uint8_t> rim(graph.numVertices(), 0);
-#pragma omp parallel for num_threads(threads) schedule(static, 1024)
-  for (std::int64_t p = 0; p < sn; ++p)
-    rim[p] = onRim(graph, xyz, rays, static_cast<std::uint32_t>(p)) ? 1 : 0;
-  return rim;
+// A rim flag not decided yet, and one queued for a batch (decided: 0 or 1).
+constexpr std::uint8_t kRimUnknown = 2, kRimQueued = 3;
+
+/// Rule 2 for the vertices listed (in parallel).
+void decideRim(const CsrGraph& graph, const float* xyz, const Rays& rays,
+               const std::vector<std::uint32_t>& list, std::vector<std::uint8_t>& rim,
+               int threads) {
+  const auto sn = static_cast<std::int64_t>(list.size());
+#pragma omp parallel for num_threads(threads) schedule(static, 256)
+  for (std::int64_t i = 0; i < sn; ++i)
+    rim[list[i]] = onRim(graph, xyz, rays, list[i]) ? 1 : 0;
 }
 
 /// Per vertex, the point in the image plane across the mean direction m (gnomonic: u = d.e1 /
@@ -250,24 +253,26 @@ std::vector<float> imagePoints(const Rays& rays, const double m[3]) {
   return uv;
 }
 
-/// Per vertex its mean graph edge length if it and its graph neighbours are off the rim (it
-/// lies inside its layer's image), else -1.
-std::vector<float> insideEdges(const CsrGraph& graph, const std::vector<std::uint8_t>& rim,
-                               int threads) {
-  const auto sn = static_cast<std::int64_t>(graph.numVertices());
-  std::vector<float> edge(graph.numVertices(), -1.0f);
-#pragma omp parallel for num_threads(threads) schedule(static, 4096)
-  for (std::int64_t p = 0; p < sn; ++p) {
-    float sum = 0.0f;
-    bool inside = !rim[p];
-    for (std::uint32_t e = graph.offsets[p]; inside && e < graph.offsets[p + 1]; ++e) {
-      inside = !rim[graph.targets[e]];
-      sum += graph.lengths[e];
-    }
-    if (inside) // off the rim: 3 or more neighbours
-      edge[p] = sum / static_cast<float>(graph.degree(static_cast<std::uint32_t>(p)));
-  }
-  return edge;
+/// p's mean graph edge length (its edges summed in order); +infinity below 3 neighbours (such a
+/// vertex is on the rim, rule 2).
+float meanEdge(const CsrGraph& graph, std::uint32_t p) {
+  if (graph.degree(p) < 3)
+    return std::numeric_limits<float>::infinity();
+  float sum = 0.0f;
+  for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+    sum += graph.lengths[e];
+  return sum / static_cast<float>(graph.degree(p));
+}
+
+/// Whether p and its graph neighbours are off the rim (it lies inside its layer's image); their
+/// flags decided.
+bool inside(const CsrGraph& graph, const std::vector<std::uint8_t>& rim, std::uint32_t p) {
+  if (rim[p])
+    return false;
+  for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+    if (rim[graph.targets[e]])
+      return false;
+  return true;
 }
 
 /// The cells' size: about a point spacing in the image plane, the median over vertices (at most
@@ -319,33 +324,89 @@ std::vector<std::uint32_t> cellKeys(const std::vector<float>& uv, double h) {
   return key;
 }
 
-/// Rule 1b: whether more than 2% of the occupied cells hold two layers: two points inside their
-/// layers (inside_edge >= 0) whose ranges differ by more than kLayerGap of their edge lengths.
-/// A surface seen through another has such cells all over. Where one surface of a view hides
+/// Whether the size points of a cell hold two layers: two points inside their layers whose
+/// ranges differ by more than kLayerGap of their mean edges. Their and their neighbours' rim
+/// flags decided.
+bool cellLayered(const CsrGraph& graph, const Rays& rays, const std::vector<float>& edge,
+                 const std::vector<std::uint8_t>& rim, const std::uint32_t* cell,
+                 std::size_t size) {
+  std::uint32_t nearest = cell[0], farthest = cell[0];
+  bool any = false;
+  for (std::size_t i = 0; i < size; ++i) {
+    const std::uint32_t p = cell[i];
+    if (!inside(graph, rim, p))
+      continue;
+    if (!any || rays.range[p] < rays.range[nearest])
+      nearest = p;
+    if (!any || rays.range[p] > rays.range[farthest])
+      farthest = p;
+    any = true;
+  }
+  return any && rays.range[farthest] - rays.range[nearest] >
+                    kLayerGap * std::max(edge[nearest], edge[farthest]);
+}
+
+/// Rule 1b: whether more than 2% of the occupied cells hold two layers (cellLayered()). A
+/// surface seen through another has such cells all over. Where one surface of a view hides
 /// another, both end (rim), and points inside them, a graph step or more in on either side, lie
 /// farther apart across the image than a cell spans.
-bool twoLayered(const Rays& rays, const std::vector<float>& inside_edge,
-                const std::vector<std::uint32_t>& key) {
+/// Only cells whose ranges spread by more than kLayerGap of their least mean edge can hold two
+/// layers; they are counted in batches of growing size, rule 2 decided for their points and
+/// their neighbours alone, and the count stops once it passes 2%: a closed surface seen from
+/// outside is told after a few percent of its rim flags. rim: per vertex kRimUnknown, or
+/// decided, and filled where decided here.
+bool twoLayered(const CsrGraph& graph, const float* xyz, const Rays& rays,
+                const std::vector<std::uint32_t>& key, std::vector<std::uint8_t>& rim,
+                int threads) {
+  const std::size_t n = key.size();
+  std::vector<float> edge(n);
+  for (std::uint32_t p = 0; p < n; ++p)
+    edge[p] = meanEdge(graph, p);
   const std::vector<std::uint32_t> order = stableOrderByKey(key);
-  std::size_t occupied = 0, layered = 0;
-  for (std::size_t begin = 0, end = 0; begin < order.size(); begin = end, ++occupied) {
-    std::uint32_t nearest = order[begin], farthest = order[begin];
-    bool any = false;
-    for (end = begin; end < order.size() && key[order[end]] == key[order[begin]]; ++end) {
+  std::vector<std::size_t> cell_begin; // of the cells that may hold two layers, and their ends
+  std::vector<std::size_t> cell_end;
+  std::size_t occupied = 0;
+  for (std::size_t begin = 0, end = 0; begin < n; begin = end, ++occupied) {
+    float lo = rays.range[order[begin]], hi = lo, least = edge[order[begin]];
+    for (end = begin; end < n && key[order[end]] == key[order[begin]]; ++end) {
       const std::uint32_t p = order[end];
-      if (inside_edge[p] < 0.0f)
-        continue;
-      if (!any || rays.range[p] < rays.range[nearest])
-        nearest = p;
-      if (!any || rays.range[p] > rays.range[farthest])
-        farthest = p;
-      any = true;
+      lo = std::min(lo, rays.range[p]);
+      hi = std::max(hi, rays.range[p]);
+      least = std::min(least, edge[p]);
     }
-    if (any && rays.range[farthest] - rays.range[nearest] >
-                   kLayerGap * std::max(inside_edge[nearest], inside_edge[farthest]))
-      ++layered;
+    if (hi - lo > kLayerGap * least) {
+      cell_begin.push_back(begin);
+      cell_end.push_back(end);
+    }
   }
-  return layered > kMaxLayeredFraction * occupied;
+  const double most = kMaxLayeredFraction * static_cast<double>(occupied);
+  std::size_t layered = 0;
+  std::vector<std::uint32_t> list;
+  auto queue = [&](std::uint32_t v) {
+    if (rim[v] == kRimUnknown) {
+      rim[v] = kRimQueued;
+      list.push_back(v);
+    }
+  };
+  for (std::size_t next = 0, batch = 2 * static_cast<std::size_t>(most) + 64;
+       next < cell_begin.size(); batch *= 2) {
+    const std::size_t last = std::min(cell_begin.size(), next + batch);
+    list.clear();
+    for (std::size_t c = next; c < last; ++c)
+      for (std::size_t i = cell_begin[c]; i < cell_end[c]; ++i) {
+        const std::uint32_t p = order[i];
+        queue(p);
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
+          queue(graph.targets[e]);
+      }
+    decideRim(graph, xyz, rays, list, rim, threads);
+    for (; next < last; ++next)
+      layered += cellLayered(graph, rays, edge, rim, order.data() + cell_begin[next],
+                             cell_end[next] - cell_begin[next]);
+    if (static_cast<double>(layered) > most)
+      return true;
+  }
+  return false;
 }
 
 } // namespace
@@ -358,12 +419,19 @@ std::vector<std::uint8_t> singleViewRim(const CsrGraph& graph, const float* xyz,
   if (n < 3 || !raysFrom(xyz, n, origin, rays) || !meanDirection(rays, m) || !withinCone(rays, m))
     return {};
   const int threads = usableThreads(num_threads);
-  std::vector<std::uint8_t> rim = rimFlags(graph, xyz, rays, threads);
   const std::vector<float> uv = imagePoints(rays, m);
   const double h = cellSize(graph, uv);
   // No spacing across the rays: the points line up along them, no surface is seen.
-  if (!(h > 0.0) || twoLayered(rays, insideEdges(graph, rim, threads), cellKeys(uv, h)))
+  if (!(h > 0.0))
     return {};
+  std::vector<std::uint8_t> rim(n, kRimUnknown);
+  if (twoLayered(graph, xyz, rays, cellKeys(uv, h), rim, threads))
+    return {};
+  const auto sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for num_threads(threads) schedule(static, 1024)
+  for (std::int64_t p = 0; p < sn; ++p)
+    if (rim[p] == kRimUnknown)
+      rim[p] = onRim(graph, xyz, rays, static_cast<std::uint32_t>(p)) ? 1 : 0;
   return rim;
 }
 

@@ -34,7 +34,8 @@ namespace pcl_ncut_seg {
  * fewer than 3 neighbours. Exact for a surface sampled by the sensor's rays (evenly in the
  * image); on one sampled evenly in space, where it is seen at more than about 75 degrees from
  * its normal is flagged too. Time O(n k), and O(k^2) more per vertex whose neighbours leave
- * a gap.
+ * a gap; a surface seen through another is told from the cells that could hold two layers
+ * before the rim is decided everywhere.
  * \param[in] graph        the symmetric kNN graph
  * \param[in] xyz          3 floats per vertex
  * \param[in] origin       the sensor's position
