@@ -85,6 +85,28 @@ TEST_F(ViewTool, WritesAnOrganizedBinaryPcdWithTheSensorPose) {
   EXPECT_NE(read(dir_ / "stdout.txt").find(std::to_string(valid) + " points"), std::string::npos);
 }
 
+TEST_F(ViewTool, TheSegmenterSeesTheViewFromItsViewpointAndKeepsIt) {
+  const fs::path view = dir_ / "out" / "view.pcd", labelled = dir_ / "out" / "labelled.pcd";
+  ASSERT_EQ(run((dir_ / "box.off").string() + " " + view.string() + " -view 4 -resolution 96x72"),
+            0);
+  for (const char* encoding : {"", " -ascii"}) {
+    const std::string cmd = std::string(PCL_NCUT_SEG_TOOL) + " " + view.string() + " " +
+                            labelled.string() + std::string(encoding) + " > " +
+                            (dir_ / "stdout.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << read(dir_ / "stdout.txt");
+    // The PCD's VIEWPOINT is the sensor origin: not read off the points.
+    EXPECT_NE(read(dir_ / "stdout.txt").find("view: one view from the sensor origin"),
+              std::string::npos)
+        << read(dir_ / "stdout.txt");
+    pcl::PointCloud<pcl::PointXYZ> in, out;
+    ASSERT_EQ(pcl::io::loadPCDFile(view.string(), in), 0);
+    ASSERT_EQ(pcl::io::loadPCDFile(labelled.string(), out), 0);
+    EXPECT_TRUE(out.sensor_origin_.isApprox(in.sensor_origin_, 1e-6f)) << encoding;
+    EXPECT_TRUE(out.sensor_orientation_.coeffs().isApprox(in.sensor_orientation_.coeffs(), 1e-6f))
+        << encoding;
+  }
+}
+
 TEST_F(ViewTool, TheSameSeedGivesTheSameView) {
   const std::string box = (dir_ / "box.off").string() + " ";
   ASSERT_EQ(run(box + (dir_ / "out" / "a.pcd").string() + " -view 7 -resolution 64x48"), 0);

@@ -356,8 +356,8 @@ void printReport(const Segmenter& seg, std::size_t num_segments) {
 
 /** -split: each segment to PREFIX_<label>.pcd, labels zero-padded to the same width. */
 bool writeSegmentFiles(const Command& cmd, const pcl::PCLPointCloud2& blob,
-                       const std::vector<std::uint32_t>& labels, std::size_t num_segments,
-                       Outputs& outputs) {
+                       const SensorPose& sensor, const std::vector<std::uint32_t>& labels,
+                       std::size_t num_segments, Outputs& outputs) {
   std::vector<std::vector<std::size_t>> members(num_segments);
   for (std::size_t i = 0; i < labels.size(); ++i)
     if (labels[i] != 0)
@@ -369,7 +369,7 @@ bool writeSegmentFiles(const Command& cmd, const pcl::PCLPointCloud2& blob,
     outputs.segments.emplace_back(new AtomicFile);
     AtomicFile& file = *outputs.segments.back();
     if (!file.open(cmd.split_prefix + "_" + number + ".pcd") ||
-        !writePcd(file, subset(blob, members[s]), cmd.encoding))
+        !writePcd(file, subset(blob, members[s]), cmd.encoding, sensor))
       return false;
   }
   return true;
@@ -380,8 +380,9 @@ bool writeOutputs(const Command& cmd, const Input& input, const std::vector<std:
                   std::size_t num_segments, ProgressBar& progress, Outputs& outputs) {
   progress.update("Write", 0.0);
   const pcl::PCLPointCloud2 blob = makeOutput(input.blob, labels, cmd.keep_fields);
-  if (!writePcd(outputs.labelled, blob, cmd.encoding) ||
-      (!cmd.split_prefix.empty() && !writeSegmentFiles(cmd, blob, labels, num_segments, outputs)))
+  if (!writePcd(outputs.labelled, blob, cmd.encoding, input.sensor) ||
+      (!cmd.split_prefix.empty() &&
+       !writeSegmentFiles(cmd, blob, input.sensor, labels, num_segments, outputs)))
     return false;
   if (!outputs.labelled.commit())
     return false;

@@ -216,7 +216,8 @@ bool readPcd(const std::string& path, Input& input) {
   {
     SilencePcl silence;
     try {
-      status = pcl::io::loadPCDFile(path, input.blob);
+      status =
+          pcl::io::loadPCDFile(path, input.blob, input.sensor.origin, input.sensor.orientation);
     } catch (const std::exception&) {
       status = -1;
     }
@@ -235,6 +236,9 @@ bool toPoints(const std::string& path, Input& input) {
     SilencePcl silence; // fromPCLPointCloud2 warns about fields it does not need
     pcl::fromPCLPointCloud2(input.blob, *input.cloud);
   }
+  // A view's sensor origin: the library then knows where the view was seen from.
+  input.cloud->sensor_origin_ = input.sensor.origin;
+  input.cloud->sensor_orientation_ = input.sensor.orientation;
   std::size_t finite = 0;
   for (const pcl::PointXYZ& p : input.cloud->points)
     finite += std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);

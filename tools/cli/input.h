@@ -5,6 +5,7 @@
 #pragma once
 
 #include "cli/flags.h"
+#include "cli/output.h"
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/point_cloud.h>
@@ -18,9 +19,10 @@ namespace pcl_ncut_seg {
 namespace tool {
 
 /** \brief What was read: every field of the file (for a mesh: x, y, z of the points sampled on
- * it), and the x, y, z as PCL points. */
+ * it), and the x, y, z as PCL points, with the file's sensor pose (a PCD's VIEWPOINT). */
 struct Input {
   pcl::PCLPointCloud2 blob;
+  SensorPose sensor; ///< a PCD's VIEWPOINT; for other formats none
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud;
   bool mesh = false;
   std::size_t num_faces = 0; ///< of a mesh

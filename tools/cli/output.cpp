@@ -53,22 +53,23 @@ bool AtomicFile::commit() {
   return true;
 }
 
-bool writePcd(AtomicFile& file, const pcl::PCLPointCloud2& blob, PcdEncoding encoding) {
+bool writePcd(AtomicFile& file, const pcl::PCLPointCloud2& blob, PcdEncoding encoding,
+              const SensorPose& sensor) {
   int status = -1;
   {
     SilencePcl silence;
     try {
       pcl::PCDWriter writer;
       if (encoding == PcdEncoding::Binary) {
-        status = writer.writeBinary(file.temporaryPath(), blob);
+        status = writer.writeBinary(file.temporaryPath(), blob, sensor.origin, sensor.orientation);
       } else {
         // 9 significant digits read every float back exactly, 17 every double.
         const bool doubles =
             std::any_of(blob.fields.begin(), blob.fields.end(), [](const pcl::PCLPointField& f) {
               return f.datatype == pcl::PCLPointField::FLOAT64;
             });
-        status = writer.writeASCII(file.temporaryPath(), blob, Eigen::Vector4f::Zero(),
-                                   Eigen::Quaternionf::Identity(), doubles ? 17 : 9);
+        status = writer.writeASCII(file.temporaryPath(), blob, sensor.origin, sensor.orientation,
+                                   doubles ? 17 : 9);
       }
     } catch (const std::exception&) {
       status = -1;

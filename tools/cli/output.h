@@ -6,6 +6,8 @@
 
 #include <pcl/PCLPointCloud2.h>
 
+#include <Eigen/Geometry>
+
 #include <string>
 
 namespace pcl_ncut_seg {
@@ -37,8 +39,17 @@ enum class PcdEncoding {
   Ascii   ///< text, with enough digits to read back every value exactly
 };
 
-/** \brief Write a cloud as PCD to the file's temporary path; one error line on failure. */
-bool writePcd(AtomicFile& file, const pcl::PCLPointCloud2& blob, PcdEncoding encoding);
+/** \brief The sensor's pose, a PCD file's VIEWPOINT (PCL's sensor_origin_ and
+ * sensor_orientation_); none given: the origin and no rotation. */
+struct SensorPose {
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+};
+
+/** \brief Write a cloud as PCD, with the sensor's pose as its VIEWPOINT, to the file's
+ * temporary path; one error line on failure. */
+bool writePcd(AtomicFile& file, const pcl::PCLPointCloud2& blob, PcdEncoding encoding,
+              const SensorPose& sensor = SensorPose());
 
 /** \brief Write text to the file's temporary path; one error line on failure. */
 bool writeText(AtomicFile& file, const std::string& contents);
