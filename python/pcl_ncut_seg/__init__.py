@@ -32,8 +32,8 @@ __all__ = [
 ]
 
 
-def segment(points, normals=None, **parameters):
-    """segment(points, normals=None, **parameters) -> numpy.ndarray
+def segment(points, normals=None, sensor_origin=None, **parameters):
+    """segment(points, normals=None, sensor_origin=None, **parameters) -> numpy.ndarray
 
     Segment a cloud with the project's defaults changed by the keyword parameters (the names of
     parameter_table(); paper=True: the paper's settings).
@@ -44,13 +44,17 @@ def segment(points, normals=None, **parameters):
     normals, when it has some, are taken unless normals is given.
     normals: an array of the points' shape: the normals CAD mode (cad=True) reads in place of
     estimating them (NaN rows: estimated); the other stages do not read normals.
+    sensor_origin: the (x, y, z) of the sensor that saw the points, in their frame (None: the
+    frame's origin, as PCL's sensor_origin_: a view in the camera's frame needs none). A single
+    view is analysed from there; when it cannot be the sensor, the position is read off the
+    points.
 
     Returns N (or H x W) int32 labels, 1-based, 0 for points in no segment. Raises ValueError
     on a bad cloud, no finite point or a bad parameter; the library's warnings (fewer points
     than k + 1, ...) are RuntimeWarnings.
     """
     points, normals = as_arrays(points, normals)
-    return _core.segment(points, normals, **parameters)
+    return _core.segment(points, normals, sensor_origin, **parameters)
 
 
 class Segmenter(_core.Segmenter):
@@ -59,17 +63,17 @@ class Segmenter(_core.Segmenter):
 segment() takes what pcl_ncut_seg.segment() takes: arrays, anything with __array__, and
 Open3D point clouds (with their normals)."""
 
-    def segment(self, points=None, normals=None, **parameters):
-        """segment(points=None, normals=None, **parameters) -> numpy.ndarray
+    def segment(self, points=None, normals=None, sensor_origin=None, **parameters):
+        """segment(points=None, normals=None, sensor_origin=None, **parameters) -> numpy.ndarray
 
         Set the parameters (as set()), then segment points (as pcl_ncut_seg.segment() takes
-        them: an array, anything with __array__ or an Open3D cloud, with its normals). None:
-        the points of the last call again, reusing the expensive stage (kNN graph, centrality,
-        supernodes) when only cut parameters changed.
+        them: an array, anything with __array__ or an Open3D cloud, with its normals, seen
+        from sensor_origin). None: the points of the last call again, reusing the expensive
+        stage (kNN graph, centrality, supernodes) when only cut parameters changed.
 
         Returns N int32 labels (H x W for an (H, W, 3) image), 1-based, 0 for points in no
         segment. ValueError on bad input, and the Segmenter keeps its previous state.
         """
         if points is not None:
             points, normals = as_arrays(points, normals)
-        return super().segment(points, normals, **parameters)
+        return super().segment(points, normals, sensor_origin, **parameters)

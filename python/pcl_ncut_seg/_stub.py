@@ -121,7 +121,8 @@ def function(name, signature_head, parameters, result, doc, indent=""):
 def stub():
     seg = pcl_ncut_seg.Segmenter
     out = [HEADER.format(version=pcl_ncut_seg.__version__, all=repr(list(pcl_ncut_seg.__all__)))]
-    out.append(function("segment", ["points: _Cloud", "normals: npt.ArrayLike | None = None"],
+    out.append(function("segment", ["points: _Cloud", "normals: npt.ArrayLike | None = None",
+                                    "sensor_origin: npt.ArrayLike | None = None"],
                         keywords(True), "npt.NDArray[np.int32]", own_doc(pcl_ncut_seg.segment)))
     for name, signature in FUNCTIONS.items():
         out.append(f"def {name}{signature}:\n"
@@ -132,7 +133,8 @@ def stub():
                         "the paper's settings).", "    "))
     out.append(function("set", ["self"], keywords(False), "None", own_doc(seg.set), "    "))
     out.append(function("segment", ["self", "points: _Cloud | None = None",
-                                    "normals: npt.ArrayLike | None = None"],
+                                    "normals: npt.ArrayLike | None = None",
+                                    "sensor_origin: npt.ArrayLike | None = None"],
                         keywords(False), "npt.NDArray[np.int32]", own_doc(seg.segment), "    "))
     for name, signature in METHODS.items():
         out.append(f"    def {name}{signature}:\n"

@@ -31,13 +31,18 @@ optional extension off (or to auto), True/False are on/off, paper=True starts fr
 to the letter instead of the project's defaults. A bad array or parameter raises ValueError
 with the library's reason. Segmenter keeps the expensive stage between calls.)doc";
 
-const char* const kSegmentDoc = R"doc(segment(points, normals=None, **parameters) -> numpy.ndarray
+const char* const kSegmentDoc =
+    R"doc(segment(points, normals=None, sensor_origin=None, **parameters) -> numpy.ndarray
 
 Segment points, an (N, 3) float32 or float64 array (NaN rows allowed) or a depth image's
 (H, W, 3) points (NaN where nothing came back; an organized cloud, whose rim is known), with
 the project's defaults changed by the keyword parameters (paper=True: the paper's settings).
 normals, an array of the points' shape, are the normals CAD mode (cad=True) reads in place of
 estimating them (NaN rows: estimated).
+sensor_origin, the (x, y, z) of the sensor that saw the points, in their frame (None: the
+frame's origin, as PCL's sensor_origin_; a view's points in the camera's frame need none),
+tells a single view from where it was seen; when it cannot be the sensor, the position is
+read off the points.
 Returns N (or H x W) int32 labels, 1-based, 0 for points in no segment. ValueError on a bad array, no finite point or a
 bad parameter; library warnings (fewer points than k + 1, ...) are RuntimeWarnings.)doc";
 
@@ -102,11 +107,13 @@ PYBIND11_MODULE(_pcl_ncut_seg, m) {
 
   m.def(
       "segment",
-      [](const py::object& points, const py::object& normals, const py::kwargs& parameters) {
+      [](const py::object& points, const py::object& normals, const py::object& sensor_origin,
+         const py::kwargs& parameters) {
         Segmenter seg{py::dict()};
-        return seg.segment(points, normals, parameters);
+        return seg.segment(points, normals, sensor_origin, parameters);
       },
-      py::arg("points"), py::arg("normals") = py::none(), kSegmentDoc);
+      py::arg("points"), py::arg("normals") = py::none(), py::arg("sensor_origin") = py::none(),
+      kSegmentDoc);
   m.def("parameter_table", &pcl_ncut_seg_python::parameterTableList,
         "parameter_table() -> list of dict\n\nEvery parameter: name, field, stage, "
         "analysis (whether changing it recomputes the expensive stage), kind, range, help, off "
@@ -138,13 +145,17 @@ PYBIND11_MODULE(_pcl_ncut_seg, m) {
       .def(
           "segment",
           [](Segmenter& s, const py::object& points, const py::object& normals,
-             const py::kwargs& parameters) { return s.segment(points, normals, parameters); },
+             const py::object& sensor_origin, const py::kwargs& parameters) {
+            return s.segment(points, normals, sensor_origin, parameters);
+          },
           py::arg("points") = py::none(), py::arg("normals") = py::none(),
-          "segment(points=None, normals=None, **parameters) -> numpy.ndarray\n\nSet the "
-          "parameters (as set()), then segment points (None: the points of the last call, "
-          "reusing the expensive stage when only cut parameters changed), with their normals "
-          "for CAD mode (None: estimated). Returns N int32 labels (H x W for "
-          "an (H, W, 3) image), 1-based, 0 for points in no segment.")
+          py::arg("sensor_origin") = py::none(),
+          "segment(points=None, normals=None, sensor_origin=None, **parameters) -> "
+          "numpy.ndarray\n\nSet the parameters (as set()), then segment points (None: the "
+          "points of the last call, reusing the expensive stage when only cut parameters "
+          "changed), with their normals for CAD mode (None: estimated), seen from sensor_origin "
+          "(None: the points' origin). Returns N int32 labels (H x W for an (H, W, 3) image), "
+          "1-based, 0 for points in no segment.")
       .def("get_labels", &Segmenter::labels, "The labels of the last segment() (int32, N).")
       .def("get_centrality", &Segmenter::centrality,
            "Centrality f(p) of eq. (1) per point (float32, N), on a noisy whole surface after "

@@ -71,7 +71,25 @@ struct BusyGuard {
 } // namespace
 
 pcl::PointCloud<pcl::PointNormal>::Ptr cloudFromArray(const py::handle& points,
-                                                      const py::handle& normals) {
+                                                      const py::handle& normals,
+                                                      const py::handle& sensor_origin) {
+  Eigen::Vector4f origin = Eigen::Vector4f::Zero(); // PCL's default: the frame's origin
+  if (!sensor_origin.is_none()) {
+    const py::array o = py::module_::import("numpy").attr("asarray")(sensor_origin);
+    const bool numeric =
+        o.dtype().kind() == 'f' || o.dtype().kind() == 'i' || o.dtype().kind() == 'u';
+    if (!numeric || o.ndim() != 1 || o.shape(0) != 3)
+      throw py::value_error("sensor_origin must be 3 numbers (x, y, z), got " +
+                            o.dtype().attr("name").cast<std::string>() + " of shape " +
+                            shapeText(o));
+    const auto xyz = o.attr("astype")("float64").cast<py::array_t<double>>();
+    for (int i = 0; i < 3; ++i) {
+      if (!std::isfinite(xyz.at(i)))
+        throw py::value_error("sensor_origin must be finite, got " +
+                              py::repr(sensor_origin).cast<std::string>());
+      origin[i] = static_cast<float>(xyz.at(i));
+    }
+  }
   const py::array a = floatArray(points, "points");
   std::optional<py::array> n; // none: NaN normals
   if (!normals.is_none()) {
@@ -101,6 +119,7 @@ pcl::PointCloud<pcl::PointNormal>::Ptr cloudFromArray(const py::handle& points,
   cloud->is_dense = std::all_of(cloud->begin(), cloud->end(), [](const pcl::PointNormal& p) {
     return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
   });
+  cloud->sensor_origin_ = origin;
   return cloud;
 }
 
@@ -137,10 +156,12 @@ py::dict Segmenter::parameters() const {
 }
 
 py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py::object& normals,
+                                             const py::object& sensor_origin,
                                              const py::dict& keywords) {
   checkIdle();
   if (!points.is_none()) {
-    auto cloud = cloudFromArray(points, normals); // before any change: bad points change nothing
+    // Before any change: bad points change nothing.
+    auto cloud = cloudFromArray(points, normals, sensor_origin);
     set(keywords);
     cloud_ = cloud;
     seg_.setInputCloud(cloud_);
@@ -149,6 +170,8 @@ py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py:
       throw py::value_error("no points: give an (N, 3) array of float32 or float64");
     if (!normals.is_none())
       throw py::value_error("normals without points: give the points they belong to");
+    if (!sensor_origin.is_none())
+      throw py::value_error("sensor_origin without points: give the points it belongs to");
     set(keywords);
   }
   have_result_ = false;

@@ -22,9 +22,12 @@ namespace py = pybind11;
 
 /** \brief The points of an (N, 3) float32 or float64 array (anything numpy.asarray turns into
  * one) as a cloud of N points in the same order, NaN rows kept, with the normals of an array of
- * the same shape (None: NaN normals, which CAD mode estimates); ValueError otherwise. */
+ * the same shape (None: NaN normals, which CAD mode estimates), seen from sensor_origin (3
+ * numbers, the sensor's position in the points' frame; None: the frame's origin, as PCL's
+ * sensor_origin_); ValueError otherwise. */
 pcl::PointCloud<pcl::PointNormal>::Ptr cloudFromArray(const py::handle& points,
-                                                      const py::handle& normals);
+                                                      const py::handle& normals,
+                                                      const py::handle& sensor_origin = py::none());
 
 class Segmenter {
 public:
@@ -39,11 +42,11 @@ public:
   py::dict parameters() const;
 
   /** \brief Segment points (None: the points of the last call again) after setting the
-   * keywords, with the normals of the points (None: none); the labels, 1-based, 0 for points
-   * in no segment. Reuses the expensive stage when only cut parameters changed since the last
-   * call on the same points. */
+   * keywords, with the normals of the points (None: none) and the sensor's position (None: the
+   * points' origin); the labels, 1-based, 0 for points in no segment. Reuses the expensive
+   * stage when only cut parameters changed since the last call on the same points. */
   py::array_t<std::int32_t> segment(const py::object& points, const py::object& normals,
-                                    const py::dict& keywords);
+                                    const py::object& sensor_origin, const py::dict& keywords);
 
   /// Results of the last segment(); RuntimeError when there is none (no call yet, a failed
   /// one, or a change of an analysis parameter since).

@@ -109,3 +109,18 @@ def test_results_before_a_result():
         seg.segment(np.full((3, 3), np.nan))
     with pytest.raises(RuntimeError, match="no result"):
         seg.get_labels()
+
+
+@pytest.mark.parametrize("origin, reason", [
+    ((0.0, 1.0), "3 numbers"),
+    ([[0.0, 0.0, 1.0]], "3 numbers"),
+    (("a", "b", "c"), "3 numbers"),
+    ((0.0, float("nan"), 1.0), "finite"),
+    ((0.0, 0.0, float("inf")), "finite"),
+])
+def test_bad_sensor_origin(origin, reason):
+    seg = pcl_ncut_seg.Segmenter(segments=3)
+    first = seg.segment(GOOD)
+    with pytest.raises(ValueError, match=reason):
+        seg.segment(GOOD, sensor_origin=origin)
+    assert np.array_equal(seg.get_labels(), first)  # the failed call changed nothing

@@ -226,6 +226,15 @@ def test_the_view_test_is_reported():
     assert view["rim_points"] > 0
     # The sensor was found in front of the cap, towards the camera (-z from its points).
     assert view["origin"][2] < 0
+    # Given where the camera was (the cap's frame moved it to minus the mean), it is taken.
+    camera = -(rays[hit] * t[:, None]).mean(axis=0)
+    seg.segment(cap, sensor_origin=camera)
+    given = seg.view_test
+    assert given["view"] is True and given["origin_estimated"] is False
+    assert np.allclose(given["origin"], camera - cap.mean(axis=0), atol=1e-4)
+    # Points of the last call: no sensor_origin without them.
+    with pytest.raises(ValueError, match="sensor_origin without points"):
+        seg.segment(sensor_origin=camera)
     # A closed surface (a sphere on a Fibonacci lattice) is no view.
     i = np.arange(4000) + 0.5
     z = 1 - 2 * i / 4000
