@@ -195,35 +195,85 @@ void readViewOptions(const Flags& flags, Options& o) {
   o.modes = o.view_forms;
 }
 
+/** A text flag that takes one of the words of `choices` ("a|b"). */
+Flag choiceFlag(const std::string& name, const std::string& choices, const std::string& help,
+                const std::string& def) {
+  Flag f = textFlag(name, choices, help, def);
+  f.check = [choices](const std::string& text, std::string* why) {
+    if (("|" + choices + "|").find("|" + text + "|") != std::string::npos && !text.empty())
+      return true;
+    *why = "one of " + choices;
+    return false;
+  };
+  return f;
+}
+
 /** LCCP's and CPC's settings (psb_peers.h), scaled to the points' bounding-box diagonal. */
 std::vector<Flag> peerFlags() {
-  const PeerParams p;
+  const std::string tuned = "results/peers.md's, per peer and input";
   return {
       intFlag("-peer_min_segment", "N",
               "LCCP's and CPC's smallest segment, in supervoxels (smaller ones merge into a "
               "neighbour; 0: none)",
-              std::to_string(p.min_segment_size), 0, 1000),
+              tuned, 0, 1000),
       realFlag("-peer_seed", "F", "LCCP's and CPC's supervoxel seed resolution, F diagonals",
-               numberText(p.seed_fraction), 1e-4, 1),
+               tuned, 1e-4, 1),
       realFlag("-peer_voxel", "F", "LCCP's and CPC's voxel resolution, F diagonals",
-               numberText(p.voxel_fraction), 1e-4, 1),
+               tuned, 1e-4, 1),
       realFlag("-peer_concavity", "DEG", "LCCP's and CPC's concavity tolerance in degrees",
-               numberText(p.concavity_tolerance), 0, 90),
+               tuned, 0, 90),
+      choiceFlag("-peer_normals", "estimated|mesh",
+                 "LCCP's and CPC's normals on whole objects: PCL's estimate from the points "
+                 "oriented outward by the mesh, or the mesh's face normals (views: always "
+                 "estimated, towards the sensor)",
+                 tuned),
+      choiceFlag("-peer_sanity", "on|off", "LCCP's and CPC's sanity criterion", tuned),
+      realFlag("-peer_cut_score", "F", "CPC's smallest score of a cut",
+               tuned, 0, 1),
+      intFlag("-peer_max_cuts", "N", "CPC's most cuts per segment",
+              tuned, 0, 1000),
   };
 }
 
-void readPeerOptions(const Flags& flags, Options& o) {
+/** The -peer_* flags given, over p. */
+void applyPeerFlags(const Flags& flags, PeerParams& p) {
   if (flags.has("-peer_min_segment"))
-    o.peers.min_segment_size = static_cast<unsigned>(flags.integer("-peer_min_segment"));
+    p.min_segment_size = static_cast<unsigned>(flags.integer("-peer_min_segment"));
   if (flags.has("-peer_seed"))
-    o.peers.seed_fraction = flags.real("-peer_seed");
+    p.seed_fraction = flags.real("-peer_seed");
   if (flags.has("-peer_voxel"))
-    o.peers.voxel_fraction = flags.real("-peer_voxel");
+    p.voxel_fraction = flags.real("-peer_voxel");
   if (flags.has("-peer_concavity"))
-    o.peers.concavity_tolerance = static_cast<float>(flags.real("-peer_concavity"));
-  if (o.peers.voxel_fraction >= o.peers.seed_fraction)
-    throw Failure("-peer_voxel must be smaller than -peer_seed");
+    p.concavity_tolerance = static_cast<float>(flags.real("-peer_concavity"));
+  if (flags.has("-peer_normals"))
+    p.normals = flags.text("-peer_normals") == "mesh" ? PeerNormals::Mesh : PeerNormals::Estimated;
+  if (flags.has("-peer_sanity"))
+    p.sanity_check = flags.text("-peer_sanity") == "on";
+  if (flags.has("-peer_cut_score"))
+    p.cpc_min_cut_score = static_cast<float>(flags.real("-peer_cut_score"));
+  if (flags.has("-peer_max_cuts"))
+    p.cpc_max_cuts = static_cast<unsigned>(flags.integer("-peer_max_cuts"));
 }
+
+void readPeerOptions(const Flags& flags, Options& o) {
+  for (const Flag& f : peerFlags())
+    if (flags.has(f.name))
+      o.peer_flags.given[f.name] = flags.text(f.name);
+  for (const bool cpc : {false, true})
+    for (const bool view : {false, true})
+      if (o.peerParams(cpc, view).voxel_fraction >= o.peerParams(cpc, view).seed_fraction)
+        throw Failure("-peer_voxel must be smaller than -peer_seed");
+}
+
+} // namespace
+
+PeerParams Options::peerParams(bool cpc, bool view) const {
+  PeerParams p = tunedPeerParams(cpc, view);
+  applyPeerFlags(peer_flags, p);
+  return p;
+}
+
+namespace {
 
 /** The sampling conditions: the points each model is segmented as, instead of its centroids. */
 std::vector<Flag> samplingFlags() {

@@ -249,6 +249,43 @@ std::vector<int> faceLabels(const std::vector<int>& point_labels,
   return out;
 }
 
+std::vector<float> outwardFaceNormals(const TriangleMesh& mesh) {
+  std::vector<double> sum(3 * mesh.num_original_faces, 0.0);
+  double volume = 0; // six times the signed volume: positive when wound outward
+  const float* v = mesh.vertices.data();
+  for (std::size_t t = 0; t < mesh.numTriangles(); ++t) {
+    const std::uint32_t* f = &mesh.faces[3 * t];
+    const float *a = v + 3 * f[0], *b = v + 3 * f[1], *c = v + 3 * f[2];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const double cross[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+                             u[0] * w[1] - u[1] * w[0]};
+    for (int d = 0; d < 3; ++d)
+      sum[3 * mesh.original_face[t] + d] += cross[d];
+    volume += a[0] * cross[0] + a[1] * cross[1] + a[2] * cross[2];
+  }
+  const double sign = volume < 0 ? -1.0 : 1.0;
+  std::vector<float> normals(sum.size());
+  for (std::size_t i = 0; i < mesh.num_original_faces; ++i) {
+    const double len = std::sqrt(sum[3 * i] * sum[3 * i] + sum[3 * i + 1] * sum[3 * i + 1] +
+                                 sum[3 * i + 2] * sum[3 * i + 2]);
+    for (int d = 0; d < 3; ++d)
+      normals[3 * i + d] =
+          len > 0 ? static_cast<float>(sign * sum[3 * i + d] / len) : (d == 2 ? 1.0f : 0.0f);
+  }
+  return normals;
+}
+
+std::vector<float> nearestFaceNormals(const std::vector<float>& xyz,
+                                      const std::vector<float>& centroids,
+                                      const std::vector<float>& face_normals) {
+  const std::vector<std::uint32_t> face = nearestPoints(centroids, xyz);
+  std::vector<float> normals(xyz.size());
+  for (std::size_t i = 0; i < face.size(); ++i)
+    std::copy_n(&face_normals[3 * face[i]], 3, &normals[3 * i]);
+  return normals;
+}
+
 SampledCloud makeCloud(const TriangleMesh& mesh, const std::vector<float>& centroids,
                        const SamplingOptions& options, int model_id, int draw) {
   SampledCloud cloud;

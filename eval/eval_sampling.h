@@ -80,6 +80,16 @@ std::vector<int> mappedBack(const std::vector<int>& labels,
 std::vector<std::uint32_t> nearestPoints(const std::vector<float>& points,
                                          const std::vector<float>& queries);
 
+/** \brief Per original face, its unit normal (x y z each): the sum of its triangles' area
+ * vectors, every one flipped when the mesh's signed volume is negative, so that a closed mesh
+ * wound either way gets outward normals. A face with no area gets (0, 0, 1). */
+std::vector<float> outwardFaceNormals(const TriangleMesh& mesh);
+
+/** \brief Per point, the normal of the face whose centroid is nearest (x y z each). */
+std::vector<float> nearestFaceNormals(const std::vector<float>& xyz,
+                                      const std::vector<float>& centroids,
+                                      const std::vector<float>& face_normals);
+
 /** \brief Each face's label: the label of its nearest point (nearest empty: the labels). */
 std::vector<int> faceLabels(const std::vector<int>& point_labels,
                             const std::vector<std::uint32_t>& nearest);

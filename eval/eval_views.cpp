@@ -228,7 +228,7 @@ std::vector<int> oursOnWhole(const Model& m, const Options& opt, double* seconds
  * known, normals face the sensor; else away from the points' centroid. */
 std::vector<int> peerOnForm(const FormCloud& f, bool cpc, const Options& opt,
                             const std::string& model, double* seconds) {
-  PeerParams params = opt.peers;
+  PeerParams params = opt.peerParams(cpc, true);
   if (opt.view_origin_known) {
     const auto& o = f.cloud->sensor_origin_;
     params.viewpoint = std::array<float, 3>{{o[0], o[1], o[2]}};

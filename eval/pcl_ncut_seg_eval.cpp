@@ -12,6 +12,7 @@
  * spread over the draws, with -draws).
  */
 #include "cli/algorithm_flags.h"
+#include "cli/build_info.h"
 #include "cli/console.h"
 #include "cli/flags.h"
 #include "cli/output.h"
@@ -261,18 +262,27 @@ void scoreOurs(const Model& m, const Draw& d, const Options& opt,
   }
 }
 
-/** PCL's LCCP and CPC on a model. */
+/** PCL's LCCP and CPC on a model, with the mesh's outward normals to orient theirs by (or to
+ * take as theirs), as a user who holds the mesh would. */
 void scorePeers(const Model& m, const Draw& d, const Options& opt, Report& report) {
+  std::vector<float> outward;
   for (const char* peer : {"lccp", "cpc"}) {
     if (!opt.has(peer))
       continue;
+    if (outward.empty()) {
+      const std::vector<float> faces = pcl_ncut_seg::eval::outwardFaceNormals(m.mesh);
+      outward = d.cloud.nearest.empty()
+                    ? faces
+                    : pcl_ncut_seg::eval::nearestFaceNormals(d.cloud.xyz, m.xyz, faces);
+    }
     std::vector<int> labels;
     std::string error;
     const auto start = std::chrono::steady_clock::now();
     // CPC reports every failed RANSAC draw as an error; they are part of how it works.
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-    const bool ok = pcl_ncut_seg::segmentWithPclPeer(d.cloud.xyz, std::string(peer) == "cpc",
-                                                     opt.peers, labels, &error);
+    const bool cpc = std::string(peer) == "cpc";
+    const bool ok = pcl_ncut_seg::segmentWithPclPeer(d.cloud.xyz, cpc, opt.peerParams(cpc, false),
+                                                     labels, &error, &outward);
     pcl::console::setVerbosityLevel(pcl::console::L_WARN);
     if (!ok)
       throw Failure(std::string(peer) + " on model " + m.name + ": " + error);
@@ -299,7 +309,8 @@ void scoreBaselines(const Model& m, const Draw& d, const Options& opt, Report& r
 
 // ---------------------------------------------------------------------------------- reports
 
-/** The reports (spread.csv too with draws), each written whole and named only once all are. */
+/** The reports (spread.csv too with draws) and the build that made them, each written whole and
+ * named only once all are. */
 void writeReports(const Options& opt, const Report& report) {
   const fs::path dir(opt.out_dir);
   const bool spread = report.draws > 1;
@@ -307,7 +318,9 @@ void writeReports(const Options& opt, const Report& report) {
       {"models.csv", pcl_ncut_seg::eval::modelsCsv(report)},
       {"categories.csv", pcl_ncut_seg::eval::categoriesCsv(report)},
       {"tables.md", pcl_ncut_seg::eval::tablesMarkdown(report) +
-                        (spread ? pcl_ncut_seg::eval::spreadMarkdown(report) : "")}};
+                        (spread ? pcl_ncut_seg::eval::spreadMarkdown(report) : "")},
+      // The binary's own build, so that a results file names what made its figures.
+      {"build", std::string(pcl_ncut_seg::buildDescription()) + "\n"}};
   if (spread)
     files.emplace_back("spread.csv", pcl_ncut_seg::eval::spreadCsv(report));
   std::vector<AtomicFile> out(files.size());
@@ -396,6 +409,10 @@ int main(int argc, char** argv) {
     return 1;
   if (flags.has("-h")) {
     printHelp();
+    return 0;
+  }
+  if (flags.has("-version")) {
+    printVersion();
     return 0;
   }
   // PCL's segmenters report progress at the info level; keep the output to our summary lines.

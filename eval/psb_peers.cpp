@@ -16,113 +16,148 @@
 #include <map>
 
 namespace pcl_ncut_seg {
+namespace {
 
-bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParams& params,
-                        std::vector<int>& labels, std::string* error) {
-  using PointT = pcl::PointXYZRGBA;
-  const std::size_t n = xyz.size() / 3;
-  if (n < 3) {
-    if (error)
-      *error = "fewer than 3 points";
-    return false;
-  }
-  pcl::PointCloud<PointT>::Ptr cloud(new pcl::PointCloud<PointT>);
-  cloud->resize(n);
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  Eigen::Vector3d hi = -lo, centroid = Eigen::Vector3d::Zero();
-  for (std::size_t i = 0; i < n; ++i) {
-    PointT& p = (*cloud)[i];
-    p.x = xyz[3 * i];
-    p.y = xyz[3 * i + 1];
-    p.z = xyz[3 * i + 2];
-    p.rgba = 0xffffffff;
-    const Eigen::Vector3d v(p.x, p.y, p.z);
-    lo = lo.cwiseMin(v);
-    hi = hi.cwiseMax(v);
-    centroid += v;
-  }
-  centroid /= static_cast<double>(n);
-  const double diagonal = (hi - lo).norm();
-  if (!(diagonal > 0)) {
-    if (error)
-      *error = "the points have no extent";
-    return false;
-  }
+using PointT = pcl::PointXYZRGBA;
+using Normals = pcl::PointCloud<pcl::Normal>;
 
-  // Normals, oriented towards the viewpoint, or away from the centroid (towards it, flipped).
-  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+void setError(std::string* error, const char* message) {
+  if (error)
+    *error = message;
+}
+
+/** The normals LCCP and CPC see: the given outward ones, or PCL's estimate oriented by them, by
+ * the viewpoint, or away from the centroid. */
+Normals::Ptr peerNormals(const pcl::PointCloud<PointT>::Ptr& cloud, const PeerParams& params,
+                         const std::vector<float>* outward, const Eigen::Vector3f& centroid) {
+  Normals::Ptr normals(new Normals);
+  const std::size_t n = cloud->size();
+  if (outward && params.normals == PeerNormals::Mesh) {
+    normals->resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      (*normals)[i].getNormalVector3fMap() = Eigen::Vector3f((*outward)[3 * i],
+                                                             (*outward)[3 * i + 1],
+                                                             (*outward)[3 * i + 2]);
+    return normals;
+  }
   pcl::NormalEstimation<PointT, pcl::Normal> estimation;
   estimation.setInputCloud(cloud);
   estimation.setSearchMethod(pcl::search::KdTree<PointT>::Ptr(new pcl::search::KdTree<PointT>));
   estimation.setKSearch(params.normal_neighbours);
-  const auto& vp = params.viewpoint;
-  estimation.setViewPoint(vp ? (*vp)[0] : static_cast<float>(centroid.x()),
-                          vp ? (*vp)[1] : static_cast<float>(centroid.y()),
-                          vp ? (*vp)[2] : static_cast<float>(centroid.z()));
+  const Eigen::Vector3f vp = params.viewpoint ? Eigen::Vector3f((*params.viewpoint)[0],
+                                                                (*params.viewpoint)[1],
+                                                                (*params.viewpoint)[2])
+                                              : centroid;
+  estimation.setViewPoint(vp.x(), vp.y(), vp.z());
   estimation.compute(*normals);
-  for (auto& nrm : *normals) {
-    if (!vp) {
-      nrm.normal_x = -nrm.normal_x;
-      nrm.normal_y = -nrm.normal_y;
-      nrm.normal_z = -nrm.normal_z;
+  for (std::size_t i = 0; i < n; ++i) {
+    auto nrm = (*normals)[i].getNormalVector3fMap();
+    if (!nrm.allFinite()) {
+      nrm = Eigen::Vector3f::UnitZ(); // degenerate neighbourhood: any unit vector
+      (*normals)[i].curvature = 0.0f;
+      continue;
     }
-    if (!std::isfinite(nrm.normal_x) || !std::isfinite(nrm.normal_y) ||
-        !std::isfinite(nrm.normal_z)) {
-      nrm.normal_x = nrm.normal_y = 0.0f; // degenerate neighbourhood: any unit vector
-      nrm.normal_z = 1.0f;
-      nrm.curvature = 0.0f;
-    }
+    // Towards the centroid (PCL's orientation to it) flipped: away from it.
+    const bool flip =
+        outward ? nrm.dot(Eigen::Vector3f((*outward)[3 * i], (*outward)[3 * i + 1],
+                                          (*outward)[3 * i + 2])) < 0
+                : !params.viewpoint;
+    if (flip)
+      nrm = -nrm;
   }
+  return normals;
+}
+
+/** The settings both segmenters share, then the segmentation into the supervoxels' labels. */
+template <typename Segmentation>
+void segmentSupervoxels(Segmentation& seg, const PeerParams& params, float voxel, float seed,
+                        const std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr>& clusters,
+                        const std::multimap<std::uint32_t, std::uint32_t>& adjacency,
+                        pcl::PointCloud<pcl::PointXYZL>& labeled) {
+  seg.setConcavityToleranceThreshold(params.concavity_tolerance);
+  seg.setSanityCheck(params.sanity_check);
+  seg.setSmoothnessCheck(true, voxel, seed, params.smoothness_threshold);
+  seg.setKFactor(0);
+  seg.setInputSupervoxels(clusters, adjacency);
+  seg.setMinSegmentSize(params.min_segment_size);
+  seg.segment();
+  seg.relabelCloud(labeled);
+}
+
+} // namespace
+
+PeerParams tunedPeerParams(bool cpc, bool view) {
+  PeerParams p; // to be set from results/peers.md
+  (void)cpc;
+  (void)view;
+  return p;
+}
+
+bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParams& params,
+                        std::vector<int>& labels, std::string* error,
+                        const std::vector<float>* outward) {
+  const std::size_t n = xyz.size() / 3;
+  if (n < 3) {
+    setError(error, "fewer than 3 points");
+    return false;
+  }
+  if (outward && outward->size() != xyz.size()) {
+    setError(error, "not one normal per point");
+    return false;
+  }
+  pcl::PointCloud<PointT>::Ptr cloud(new pcl::PointCloud<PointT>);
+  cloud->resize(n);
+  Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
+  Eigen::Vector3f hi = -lo;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    PointT& p = (*cloud)[i];
+    p.getVector3fMap() = Eigen::Vector3f(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    p.rgba = 0xffffffff;
+    lo = lo.cwiseMin(p.getVector3fMap());
+    hi = hi.cwiseMax(p.getVector3fMap());
+    sum += p.getVector3fMap().cast<double>();
+  }
+  const double diagonal = (hi - lo).cast<double>().norm();
+  if (!(diagonal > 0)) {
+    setError(error, "the points have no extent");
+    return false;
+  }
+  const Eigen::Vector3f centroid = (sum / static_cast<double>(n)).cast<float>();
 
   const auto voxel = static_cast<float>(params.voxel_fraction * diagonal);
   const auto seed = static_cast<float>(params.seed_fraction * diagonal);
   pcl::SupervoxelClustering<PointT> supervoxels(voxel, seed);
   supervoxels.setUseSingleCameraTransform(false);
   supervoxels.setInputCloud(cloud);
-  supervoxels.setNormalCloud(normals);
+  supervoxels.setNormalCloud(peerNormals(cloud, params, outward, centroid));
   supervoxels.setColorImportance(0.0f);
   supervoxels.setSpatialImportance(1.0f);
   supervoxels.setNormalImportance(4.0f);
   std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr> clusters;
   supervoxels.extract(clusters);
   if (clusters.empty()) {
-    if (error)
-      *error = "no supervoxels";
+    setError(error, "no supervoxels");
     return false;
   }
   std::multimap<std::uint32_t, std::uint32_t> adjacency;
   supervoxels.getSupervoxelAdjacency(adjacency);
   pcl::PointCloud<pcl::PointXYZL>::Ptr labeled = supervoxels.getLabeledCloud();
   if (labeled->size() != n) {
-    if (error)
-      *error = "supervoxel labels do not match the points";
+    setError(error, "supervoxel labels do not match the points");
     return false;
   }
 
   if (cpc) {
     pcl::CPCSegmentation<PointT> seg;
-    seg.setConcavityToleranceThreshold(params.concavity_tolerance);
-    seg.setSanityCheck(false);
-    seg.setSmoothnessCheck(true, voxel, seed, params.smoothness_threshold);
-    seg.setKFactor(0);
-    seg.setInputSupervoxels(clusters, adjacency);
-    seg.setMinSegmentSize(params.min_segment_size);
     seg.setCutting(params.cpc_max_cuts, params.cpc_min_segments_to_cut, params.cpc_min_cut_score,
                    params.cpc_local_constrain, params.cpc_directed_cutting,
                    params.cpc_clean_cutting);
     seg.setRANSACIterations(params.cpc_ransac_iterations);
-    seg.segment();
-    seg.relabelCloud(*labeled);
+    segmentSupervoxels(seg, params, voxel, seed, clusters, adjacency, *labeled);
   } else {
     pcl::LCCPSegmentation<PointT> seg;
-    seg.setConcavityToleranceThreshold(params.concavity_tolerance);
-    seg.setSanityCheck(false);
-    seg.setSmoothnessCheck(true, voxel, seed, params.smoothness_threshold);
-    seg.setKFactor(0);
-    seg.setInputSupervoxels(clusters, adjacency);
-    seg.setMinSegmentSize(params.min_segment_size);
-    seg.segment();
-    seg.relabelCloud(*labeled);
+    segmentSupervoxels(seg, params, voxel, seed, clusters, adjacency, *labeled);
   }
   labels.assign(n, -1);
   for (std::size_t i = 0; i < n; ++i)

@@ -11,12 +11,20 @@
 
 namespace pcl_ncut_seg {
 
+/** \brief Where LCCP's and CPC's normals come from. */
+enum class PeerNormals {
+  Estimated, ///< PCL's normal estimation, then oriented (towards the sensor, or outward)
+  Mesh,      ///< the outward normals given with the points (a mesh's), as they are
+};
+
 /** \brief One setting for every model, in units of the model's bounding-box diagonal d. */
 struct PeerParams {
   double voxel_fraction = 0.01;      ///< supervoxel voxel resolution = voxel_fraction * d
   double seed_fraction = 0.05;       ///< supervoxel seed resolution = seed_fraction * d
   int normal_neighbours = 10;        ///< k of PCL's normal estimation
+  PeerNormals normals = PeerNormals::Estimated;
   float concavity_tolerance = 10.0f; ///< degrees (LCCP and CPC)
+  bool sanity_check = true;          ///< LCCP's sanity criterion (convexity needs consistency)
   float smoothness_threshold = 0.1f; ///< LCCP smoothness check
   unsigned min_segment_size = 0;     ///< supervoxels; smaller segments are merged (0 = off)
   unsigned cpc_max_cuts = 25;
@@ -27,16 +35,26 @@ struct PeerParams {
   bool cpc_clean_cutting = true;
   unsigned cpc_ransac_iterations = 1000;
   /// Where the points were seen from (a sensor's origin): normals are oriented towards it, as
-  /// PCL orients a view's normals. None: away from the points' centroid (closed surfaces).
+  /// PCL orients a view's normals.
   std::optional<std::array<float, 3>> viewpoint;
 };
 
-/** \brief PCL's LCCP (cpc = false) or CPC (cpc = true) segmentation on supervoxels. Normals come
- * from PCL's normal estimation over the points' k nearest neighbours and are oriented towards
- * params.viewpoint if given, else away from the points' centroid (a closed surface).
- * Points that no supervoxel takes get -1. \return false with a reason on failure. */
+/** \brief LCCP's (cpc false) or CPC's settings on whole objects (view false) or on views, as
+ * chosen on the benchmark's dev split by scripts/tune_peers.sh (results/peers.md). */
+PeerParams tunedPeerParams(bool cpc, bool view);
+
+/** \brief PCL's LCCP (cpc = false) or CPC (cpc = true) segmentation on supervoxels, with the
+ * sanity criterion and the smoothness check as params say.
+ * \param[in] xyz the points, x y z each
+ * \param[in] outward if not null, an outward normal per point (x y z each, from the mesh the
+ *            points lie on): used as the normals with PeerNormals::Mesh, else to orient PCL's
+ *            estimated normals. Without it, estimated normals face params.viewpoint if given,
+ *            else away from the points' centroid.
+ * \param[out] labels a label per point; -1 where no supervoxel takes the point
+ * \return false with a reason on failure. */
 bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParams& params,
-                        std::vector<int>& labels, std::string* error = nullptr);
+                        std::vector<int>& labels, std::string* error = nullptr,
+                        const std::vector<float>* outward = nullptr);
 
 /** \brief The eight octants around the centroid: a baseline that games the Rand index. */
 std::vector<int> segmentOctants(const std::vector<float>& xyz);

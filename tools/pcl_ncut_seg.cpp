@@ -421,6 +421,10 @@ int main(int argc, char** argv) {
     printHelp(argv[0]);
     return 0;
   }
+  if (flags.has("-version")) {
+    printVersion();
+    return 0;
+  }
   if (flags.has("-quiet")) {
     g_quiet = true;
     setVerbosityLevel(L_WARN);

@@ -297,6 +297,10 @@ int main(int argc, char** argv) {
     printHelp(argv[0]);
     return 0;
   }
+  if (flags.has("-version")) {
+    printVersion();
+    return 0;
+  }
   if (flags.has("-quiet"))
     setVerbosityLevel(L_WARN);
   ViewerOptions options;

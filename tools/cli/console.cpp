@@ -1,12 +1,20 @@
 #include "cli/console.h"
 
+#include "cli/build_info.h"
+
 #include <pcl/console/print.h>
+
+#include <cstdio>
 
 namespace pcl_ncut_seg {
 namespace tool {
 
 void fail(const std::string& message) {
   pcl::console::print_error("Error: %s\n", message.c_str());
+}
+
+void printVersion() {
+  std::printf("pcl_ncut_seg %s (build %s)\n", projectVersion(), buildDescription());
 }
 
 void warn(const std::string& message) {

@@ -13,6 +13,9 @@ void fail(const std::string& message);
 /** \brief One warning line on stderr ("Warning: ..."). */
 void warn(const std::string& message);
 
+/** \brief "pcl_ncut_seg VERSION (build BUILD)" on stdout, for -version. */
+void printVersion();
+
 /** \brief Silences PCL's own console messages while in scope. */
 class SilencePcl {
 public:

@@ -129,9 +129,9 @@ double Flags::real(const std::string& name) const {
 
 namespace {
 
-/** The row for arg ("--help" is "-h"); nullptr for none. */
+/** The row for arg ("--help" is "-h", "--version" "-version"); nullptr for none. */
 const Flag* lookUp(const std::vector<Flag>& table, const std::string& arg) {
-  const std::string name = arg == "--help" ? "-h" : arg;
+  const std::string name = arg == "--help" ? "-h" : arg == "--version" ? "-version" : arg;
   for (const Flag& f : table)
     if (f.name == name)
       return &f;
@@ -217,7 +217,8 @@ void printFlags(const std::vector<Flag>& table) {
 
 std::vector<Flag> commonFlags() {
   std::vector<Flag> table = {switchFlag("-quiet", "print errors and warnings only"),
-                             switchFlag("-h", "this help (also --help)", "")};
+                             switchFlag("-h", "this help (also --help)", ""),
+                             switchFlag("-version", "the version and build (also --version)", "")};
   for (Flag& f : table)
     f.group = "general";
   return table;
