@@ -210,28 +210,29 @@ Flag choiceFlag(const std::string& name, const std::string& choices, const std::
 
 /** LCCP's and CPC's settings (psb_peers.h), scaled to the points' bounding-box diagonal. */
 std::vector<Flag> peerFlags() {
-  const std::string tuned = "results/peers.md's, per peer and input";
+  const std::string tuned = "-peer_settings', else PCL's tutorial values";
   return {
+      textFlag("-peer_settings", "FILE",
+               "LCCP's and CPC's settings per peer and input, as scripts/tune_peers.py writes "
+               "them (results/peer_settings.csv); the other -peer_* flags apply over them"),
       intFlag("-peer_min_segment", "N",
               "LCCP's and CPC's smallest segment, in supervoxels (smaller ones merge into a "
               "neighbour; 0: none)",
               tuned, 0, 1000),
-      realFlag("-peer_seed", "F", "LCCP's and CPC's supervoxel seed resolution, F diagonals",
-               tuned, 1e-4, 1),
-      realFlag("-peer_voxel", "F", "LCCP's and CPC's voxel resolution, F diagonals",
-               tuned, 1e-4, 1),
-      realFlag("-peer_concavity", "DEG", "LCCP's and CPC's concavity tolerance in degrees",
-               tuned, 0, 90),
+      realFlag("-peer_seed", "F", "LCCP's and CPC's supervoxel seed resolution, F diagonals", tuned,
+               1e-4, 1),
+      realFlag("-peer_voxel", "F", "LCCP's and CPC's voxel resolution, F diagonals", tuned, 1e-4,
+               1),
+      realFlag("-peer_concavity", "DEG", "LCCP's and CPC's concavity tolerance in degrees", tuned,
+               0, 90),
       choiceFlag("-peer_normals", "estimated|mesh",
                  "LCCP's and CPC's normals on whole objects: PCL's estimate from the points "
                  "oriented outward by the mesh, or the mesh's face normals (views: always "
                  "estimated, towards the sensor)",
                  tuned),
       choiceFlag("-peer_sanity", "on|off", "LCCP's and CPC's sanity criterion", tuned),
-      realFlag("-peer_cut_score", "F", "CPC's smallest score of a cut",
-               tuned, 0, 1),
-      intFlag("-peer_max_cuts", "N", "CPC's most cuts per segment",
-              tuned, 0, 1000),
+      realFlag("-peer_cut_score", "F", "CPC's smallest score of a cut", tuned, 0, 1),
+      intFlag("-peer_max_cuts", "N", "CPC's most cuts per segment", tuned, 0, 1000),
   };
 }
 
@@ -256,8 +257,12 @@ void applyPeerFlags(const Flags& flags, PeerParams& p) {
 }
 
 void readPeerOptions(const Flags& flags, Options& o) {
+  std::string error;
+  if (flags.has("-peer_settings") &&
+      !readPeerSettings(flags.text("-peer_settings"), o.peer_settings, &error))
+    throw Failure(flags.text("-peer_settings") + ": " + error);
   for (const Flag& f : peerFlags())
-    if (flags.has(f.name))
+    if (flags.has(f.name) && f.name != "-peer_settings")
       o.peer_flags.given[f.name] = flags.text(f.name);
   for (const bool cpc : {false, true})
     for (const bool view : {false, true})
@@ -268,7 +273,7 @@ void readPeerOptions(const Flags& flags, Options& o) {
 } // namespace
 
 PeerParams Options::peerParams(bool cpc, bool view) const {
-  PeerParams p = tunedPeerParams(cpc, view);
+  PeerParams p = peer_settings.of(cpc, view);
   applyPeerFlags(peer_flags, p);
   return p;
 }

@@ -49,13 +49,14 @@ struct Options {
   /// How each view reaches the segmenters (-view_forms): modes "view" (the organized frame),
   /// "crop", "voxel", "laser" (eval_views.h).
   std::vector<std::string> view_forms = {"view"};
-  bool view_origin_known = true;       ///< false: sensor_origin_ left at 0 (-view_origin unknown)
-  tool::Flags peer_flags;              ///< the -peer_* flags, over the tuned settings
-  pcl_ncut_seg::CameraSettings camera; ///< the views' camera (-resolution, -range_noise)
-  pcl_ncut_seg::Parameters params;     ///< -paper or the defaults, and the algorithm flags
+  bool view_origin_known = true; ///< false: sensor_origin_ left at 0 (-view_origin unknown)
+  pcl_ncut_seg::PeerSettings peer_settings; ///< -peer_settings FILE, or PeerParams' defaults
+  tool::Flags peer_flags;                   ///< the other -peer_* flags, over peer_settings
+  pcl_ncut_seg::CameraSettings camera;      ///< the views' camera (-resolution, -range_noise)
+  pcl_ncut_seg::Parameters params;          ///< -paper or the defaults, and the algorithm flags
 
-  /** LCCP's (cpc false) or CPC's settings on whole objects or views: results/peers.md's
-   * (tunedPeerParams), with the -peer_* flags given applied over them. */
+  /** LCCP's (cpc false) or CPC's settings on whole objects or views: peer_settings, with the
+   * other -peer_* flags given applied over them. */
   pcl_ncut_seg::PeerParams peerParams(bool cpc, bool view) const;
 
   bool has(const std::string& method) const {

@@ -12,8 +12,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <limits>
 #include <map>
+#include <sstream>
+#include <stdexcept>
 
 namespace pcl_ncut_seg {
 namespace {
@@ -35,19 +38,18 @@ Normals::Ptr peerNormals(const pcl::PointCloud<PointT>::Ptr& cloud, const PeerPa
   if (outward && params.normals == PeerNormals::Mesh) {
     normals->resize(n);
     for (std::size_t i = 0; i < n; ++i)
-      (*normals)[i].getNormalVector3fMap() = Eigen::Vector3f((*outward)[3 * i],
-                                                             (*outward)[3 * i + 1],
-                                                             (*outward)[3 * i + 2]);
+      (*normals)[i].getNormalVector3fMap() =
+          Eigen::Vector3f((*outward)[3 * i], (*outward)[3 * i + 1], (*outward)[3 * i + 2]);
     return normals;
   }
   pcl::NormalEstimation<PointT, pcl::Normal> estimation;
   estimation.setInputCloud(cloud);
   estimation.setSearchMethod(pcl::search::KdTree<PointT>::Ptr(new pcl::search::KdTree<PointT>));
   estimation.setKSearch(params.normal_neighbours);
-  const Eigen::Vector3f vp = params.viewpoint ? Eigen::Vector3f((*params.viewpoint)[0],
-                                                                (*params.viewpoint)[1],
-                                                                (*params.viewpoint)[2])
-                                              : centroid;
+  const Eigen::Vector3f vp =
+      params.viewpoint
+          ? Eigen::Vector3f((*params.viewpoint)[0], (*params.viewpoint)[1], (*params.viewpoint)[2])
+          : centroid;
   estimation.setViewPoint(vp.x(), vp.y(), vp.z());
   estimation.compute(*normals);
   for (std::size_t i = 0; i < n; ++i) {
@@ -58,10 +60,9 @@ Normals::Ptr peerNormals(const pcl::PointCloud<PointT>::Ptr& cloud, const PeerPa
       continue;
     }
     // Towards the centroid (PCL's orientation to it) flipped: away from it.
-    const bool flip =
-        outward ? nrm.dot(Eigen::Vector3f((*outward)[3 * i], (*outward)[3 * i + 1],
-                                          (*outward)[3 * i + 2])) < 0
-                : !params.viewpoint;
+    const bool flip = outward ? nrm.dot(Eigen::Vector3f((*outward)[3 * i], (*outward)[3 * i + 1],
+                                                        (*outward)[3 * i + 2])) < 0
+                              : !params.viewpoint;
     if (flip)
       nrm = -nrm;
   }
@@ -86,11 +87,61 @@ void segmentSupervoxels(Segmentation& seg, const PeerParams& params, float voxel
 
 } // namespace
 
-PeerParams tunedPeerParams(bool cpc, bool view) {
-  PeerParams p; // to be set from results/peers.md
-  (void)cpc;
-  (void)view;
-  return p;
+namespace {
+
+/** One row's settings over p; false if a field does not parse. */
+bool parseSettingsRow(const std::vector<std::string>& f, PeerParams& p) {
+  try {
+    std::size_t used = 0;
+    auto number = [&used](const std::string& text) {
+      const double v = std::stod(text, &used);
+      if (used != text.size() || !std::isfinite(v) || v < 0)
+        throw std::invalid_argument(text);
+      return v;
+    };
+    p.voxel_fraction = number(f[2]);
+    p.seed_fraction = number(f[3]);
+    if (f[4] != "estimated" && f[4] != "mesh")
+      return false;
+    p.normals = f[4] == "mesh" ? PeerNormals::Mesh : PeerNormals::Estimated;
+    p.concavity_tolerance = static_cast<float>(number(f[5]));
+    p.min_segment_size = static_cast<unsigned>(number(f[6]));
+    p.cpc_min_cut_score = static_cast<float>(number(f[7]));
+    p.cpc_max_cuts = static_cast<unsigned>(number(f[8]));
+  } catch (const std::exception&) {
+    return false;
+  }
+  return p.voxel_fraction > 0 && p.voxel_fraction < p.seed_fraction;
+}
+
+} // namespace
+
+bool readPeerSettings(const std::string& path, PeerSettings& settings, std::string* error) {
+  std::ifstream in(path);
+  const std::string header = "peer,kind,voxel,seed,normals,concavity,min_segment,cut_score,"
+                             "max_cuts";
+  std::string line;
+  if (!in || !std::getline(in, line) || line != header) {
+    setError(error, "not a peer settings file (its first line is not the expected header)");
+    return false;
+  }
+  PeerSettings read = settings;
+  for (int row = 2; std::getline(in, line); ++row) {
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string field; std::getline(fields, field, ',');)
+      f.push_back(field);
+    const bool known_peer =
+        f.size() == 9 && (f[0] == "lccp" || f[0] == "cpc") && (f[1] == "whole" || f[1] == "views");
+    PeerParams* p = known_peer ? &read.of(f[0] == "cpc", f[1] == "views") : nullptr;
+    if (!p || !parseSettingsRow(f, *p)) {
+      if (error)
+        *error = "bad row " + std::to_string(row) + " in the peer settings";
+      return false;
+    }
+  }
+  settings = read;
+  return true;
 }
 
 bool segmentWithPclPeer(const std::vector<float>& xyz, bool cpc, const PeerParams& params,

@@ -19,9 +19,9 @@ enum class PeerNormals {
 
 /** \brief One setting for every model, in units of the model's bounding-box diagonal d. */
 struct PeerParams {
-  double voxel_fraction = 0.01;      ///< supervoxel voxel resolution = voxel_fraction * d
-  double seed_fraction = 0.05;       ///< supervoxel seed resolution = seed_fraction * d
-  int normal_neighbours = 10;        ///< k of PCL's normal estimation
+  double voxel_fraction = 0.01; ///< supervoxel voxel resolution = voxel_fraction * d
+  double seed_fraction = 0.05;  ///< supervoxel seed resolution = seed_fraction * d
+  int normal_neighbours = 10;   ///< k of PCL's normal estimation
   PeerNormals normals = PeerNormals::Estimated;
   float concavity_tolerance = 10.0f; ///< degrees (LCCP and CPC)
   bool sanity_check = true;          ///< LCCP's sanity criterion (convexity needs consistency)
@@ -39,9 +39,24 @@ struct PeerParams {
   std::optional<std::array<float, 3>> viewpoint;
 };
 
-/** \brief LCCP's (cpc false) or CPC's settings on whole objects (view false) or on views, as
- * chosen on the benchmark's dev split by scripts/tune_peers.sh (results/peers.md). */
-PeerParams tunedPeerParams(bool cpc, bool view);
+/** \brief LCCP's and CPC's settings on whole objects and on views: the file that
+ * scripts/tune_peers.py writes (results/peer_settings.csv) from its grid on the dev split. */
+struct PeerSettings {
+  PeerParams lccp_whole, lccp_views, cpc_whole, cpc_views;
+
+  PeerParams& of(bool cpc, bool view) {
+    return cpc ? (view ? cpc_views : cpc_whole) : (view ? lccp_views : lccp_whole);
+  }
+  const PeerParams& of(bool cpc, bool view) const {
+    return const_cast<PeerSettings*>(this)->of(cpc, view);
+  }
+};
+
+/** \brief Read a settings file: a CSV header "peer,kind,voxel,seed,normals,concavity,
+ * min_segment,cut_score,max_cuts", then a row per peer (lccp, cpc) and kind (whole, views).
+ * Settings not in the file keep PeerParams' defaults.
+ * \return false with a one-line reason on a file that cannot be read or a malformed row. */
+bool readPeerSettings(const std::string& path, PeerSettings& settings, std::string* error);
 
 /** \brief PCL's LCCP (cpc = false) or CPC (cpc = true) segmentation on supervoxels, with the
  * sanity criterion and the smoothness check as params say.

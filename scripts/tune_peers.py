@@ -3,7 +3,10 @@
 confirmed once on the validation split; and results/peers.md from those runs.
 
     python3 scripts/tune_peers.py run OUT           # the grid on psb-dev, then psb-val once
-    python3 scripts/tune_peers.py write OUT peers.md
+    python3 scripts/tune_peers.py write OUT peers.md [peer_settings.csv]
+
+`write` also copies the chosen settings to results/peer_settings.csv, from which
+scripts/report.sh and bench/ run the peers (the evaluator's -peer_settings).
 
 Both peers run with PCL's sanity criterion and smoothness check on, normals estimated by PCL
 (oriented outward by the mesh on whole objects, towards the sensor on views) or, on whole
@@ -174,7 +177,7 @@ def describe(setting, kind):
     return ", ".join(parts)
 
 
-def write(out, target):
+def write(out, target, settings_target):
     chosen = {(r["peer"], r["kind"]): {k: r[k] for k in KEYS}
               for r in read_table(os.path.join(out, "chosen.csv"))}
     history = read_table(os.path.join(out, "history.csv"))
@@ -248,13 +251,15 @@ def write(out, target):
               "sensor. The grid (`scripts/tune_peers.py`) chooses on the dev split's two halves "
               "(models base+1..3 / base+4..6, `a / b`), in stages; the validation split "
               "(base+17..20) ran once, at the chosen settings, and chose nothing. "
-              "`scripts/report.sh` runs the peers at these settings (the evaluator's "
-              "defaults, `tunedPeerParams` in `eval/psb_peers.cpp`).\n")
+              "`scripts/report.sh` and `bench/` run the peers at these settings "
+              "(`results/peer_settings.csv`, the evaluator's `-peer_settings`).\n")
     md.append("The validation runs:\n\n```")
     md += commands
     md.append("```\n")
     report.write_atomically(target, md + body)
-    print(f"tune_peers.py: wrote {target}")
+    with open(os.path.join(out, "chosen.csv")) as f:
+        report.write_atomically(settings_target, f.read().rstrip("\n").split("\n"))
+    print(f"tune_peers.py: wrote {target} and {settings_target}")
 
 
 def _peers_with(history, setting, kind):
@@ -266,8 +271,9 @@ def _peers_with(history, setting, kind):
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "run":
         run(sys.argv[2])
-    elif len(sys.argv) == 4 and sys.argv[1] == "write":
-        write(sys.argv[2], sys.argv[3])
+    elif len(sys.argv) in (4, 5) and sys.argv[1] == "write":
+        write(sys.argv[2], sys.argv[3], sys.argv[4] if len(sys.argv) == 5 else os.path.join(
+            os.path.dirname(os.path.abspath(sys.argv[3])), "peer_settings.csv"))
     else:
         sys.exit(__doc__)
 

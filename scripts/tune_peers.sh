@@ -4,9 +4,8 @@
 #
 #   bash scripts/tune_peers.sh OUT [peers.md]
 #
-# Environment: as scripts/tune_peers.py (EVAL, DEV, VAL, JOBS). Put the chosen settings
-# (OUT/chosen.csv) into tunedPeerParams (eval/psb_peers.cpp), from which scripts/report.sh and
-# bench/ run the peers.
+# Environment: as scripts/tune_peers.py (EVAL, DEV, VAL, JOBS). It also writes
+# results/peer_settings.csv, the settings scripts/report.sh and bench/ run the peers with.
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
