@@ -4,40 +4,61 @@
 #pragma once
 
 #include "depth_view_pcl.h"
+#include "psb_peers.h"
 
-#include <pcl/segmentation/lccp_segmentation.h>
-#include <pcl/segmentation/supervoxel_clustering.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
-#include <map>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace pcl_ncut_seg_bench {
 
-/// PCL's part segmenter on a whole model as its tutorial runs it: supervoxels (with their own
-/// normal estimate per voxel), then LCCP over their adjacency; voxels of `voxel`, seeds of four
-/// voxels. One label per point of the cloud.
+/// LCCP's settings on whole objects (view false) or views, as results/peer_settings.csv holds
+/// them (chosen on the benchmark's dev split by scripts/tune_peers.sh); exits with a one-line
+/// reason when the file cannot be read.
+inline pcl_ncut_seg::PeerParams chosenLccp(bool view) {
+  pcl_ncut_seg::PeerSettings settings;
+  std::string error;
+  if (!pcl_ncut_seg::readPeerSettings(PCL_NCUT_SEG_PEER_SETTINGS, settings, &error)) {
+    std::fprintf(stderr, "%s: %s\n", PCL_NCUT_SEG_PEER_SETTINGS, error.c_str());
+    std::exit(2);
+  }
+  return settings.of(false, view);
+}
+
+/// PCL's part segmenter as a user who tuned it runs it (PCL's normals, supervoxels, LCCP with
+/// the sanity criterion, at chosenLccp(view)); normals face the viewpoint if given, else away
+/// from the centroid. One label per point, 0 for none; exits when LCCP fails.
 inline pcl::PointCloud<pcl::PointXYZL>::Ptr
-lccpWholeModel(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, float voxel) {
-  pcl::SupervoxelClustering<pcl::PointXYZ> super(voxel, 4.0f * voxel);
-  super.setUseSingleCameraTransform(false);
-  super.setInputCloud(cloud);
-  super.setColorImportance(0.0f);
-  super.setSpatialImportance(1.0f);
-  super.setNormalImportance(4.0f);
-  std::map<std::uint32_t, pcl::Supervoxel<pcl::PointXYZ>::Ptr> clusters;
-  super.extract(clusters);
-  std::multimap<std::uint32_t, std::uint32_t> adjacency;
-  super.getSupervoxelAdjacency(adjacency);
-  pcl::LCCPSegmentation<pcl::PointXYZ> lccp;
-  lccp.setConcavityToleranceThreshold(10.0f);
-  lccp.setSmoothnessCheck(true, voxel, 4.0f * voxel, 0.1f);
-  lccp.setKFactor(0);
-  lccp.setInputSupervoxels(clusters, adjacency);
-  lccp.segment();
-  pcl::PointCloud<pcl::PointXYZL>::Ptr labels = super.getLabeledCloud();
-  lccp.relabelCloud(*labels);
-  return labels;
+lccpLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud, bool view,
+           std::optional<std::array<float, 3>> viewpoint = std::nullopt) {
+  std::vector<float> xyz;
+  xyz.reserve(3 * cloud.size());
+  for (const auto& p : cloud)
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  pcl_ncut_seg::PeerParams params = chosenLccp(view);
+  params.viewpoint = viewpoint;
+  std::vector<int> labels;
+  std::string error;
+  if (!pcl_ncut_seg::segmentWithPclPeer(xyz, false, params, labels, &error)) {
+    std::fprintf(stderr, "LCCP failed: %s\n", error.c_str());
+    std::exit(2);
+  }
+  pcl::PointCloud<pcl::PointXYZL>::Ptr out(new pcl::PointCloud<pcl::PointXYZL>);
+  out->resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    pcl::PointXYZL& q = (*out)[i];
+    q.x = cloud[i].x, q.y = cloud[i].y, q.z = cloud[i].z;
+    q.label = labels[i] < 0 ? 0u : static_cast<std::uint32_t>(labels[i]);
+  }
+  return out;
 }
 
 /// One object alone in a depth camera's frame (the views bench's "(a)"): the default camera

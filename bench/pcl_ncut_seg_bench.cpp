@@ -13,6 +13,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
+#include "build_info.h"
 #include "child_run.h"
 #include "mesh_sampling.h"
 #include "peak_memory.h"
@@ -94,11 +95,10 @@ int runOne(const std::string& path, std::size_t n, const std::string& method, in
   const std::size_t base = startPeakMemory();
   std::ostringstream out;
   if (method == "lccp") {
-    // PCL's part segmenter as its tutorial runs it: supervoxels (with their normal estimate
-    // per voxel) then LCCP over the supervoxel adjacency; resolutions relative to the model.
+    // PCL's part segmenter at the settings chosen on the benchmark (results/peer_settings.csv).
     const double start = now();
     const pcl::PointCloud<pcl::PointXYZL>::Ptr labels =
-        pcl_ncut_seg_bench::lccpWholeModel(cloud, static_cast<float>(diagonal / 100.0));
+        pcl_ncut_seg_bench::lccpLabels(*cloud, false);
     std::map<std::uint32_t, int> segments;
     for (const auto& p : *labels)
       segments[p.label] = 1;
@@ -188,9 +188,9 @@ int main(int argc, char** argv) {
   const std::string self(self_buffer, static_cast<std::size_t>(len));
   const std::vector<Row>& rows = quick ? kQuickRows : kFullRows;
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
-  std::printf("pcl_ncut_seg benchmark: %ld cores, threads %d (0 = all), load average at start "
-              "%s\n",
-              cores, threads, loadAverage().c_str());
+  std::printf("pcl_ncut_seg benchmark (build %s): %ld cores, threads %d (0 = all), load average "
+              "at start %s\n",
+              pcl_ncut_seg::buildDescription(), cores, threads, loadAverage().c_str());
   std::printf("Times in seconds (wall); peak = memory beyond the input cloud, MB and bytes per "
               "point.\n");
 
@@ -258,8 +258,8 @@ int main(int argc, char** argv) {
   }
 
   if (lccp) {
-    std::printf("\nPCL supervoxels + LCCP on the same clouds (voxel = diagonal / 100, seed = 4 "
-                "voxels)\n");
+    std::printf("\nPCL supervoxels + LCCP on the same clouds (results/peer_settings.csv's whole "
+                "row)\n");
     std::printf("%-10s %8s %8s %6s %10s %10s  %s\n", "model", "n", "LCCP s", "t", "default s",
                 "LCCP/ours", "load");
     for (std::size_t i = 0; i < rows.size(); ++i) {

@@ -10,13 +10,14 @@
  * Each measurement is a fresh child process (this program with --run) that reads the PCD,
  * segments it and writes the labelled cloud as a binary PCD: "whole" is that wall time, and the
  * child's peak resident memory is the whole process's (libraries included), as a user's program
- * would see it. Ours: the defaults on all cores. LCCP: as pcl_ncut_seg_bench_views runs it on
- * the view (PCL's normals towards the sensor, 7.5 mm voxels, 3 cm seeds: eval/psb_peers.h) and
- * as pcl_ncut_seg_bench runs it on whole models (voxel = diagonal / 100, seed = 4 voxels).
+ * would see it. Ours: the defaults on all cores. LCCP: at the settings chosen on the benchmark
+ * (results/peer_settings.csv) for views on the view (normals towards the sensor) and for whole
+ * objects on the hand (eval/psb_peers.h).
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
+#include "build_info.h"
 #include "child_run.h"
 #include "depth_view_pcl.h"
 #include "mesh_sampling.h"
@@ -64,44 +65,16 @@ const std::vector<Size> kSizes = {{"bunny view", true, 20000},
                                   {"hand 10M", false, 10000000}};
 constexpr std::size_t kOneRunFrom = 10000000; // clouds this large run once (tens of seconds)
 
-double diagonalOf(const Cloud& cloud) {
-  Eigen::Vector4f lo, hi;
-  pcl::getMinMax3D(cloud, lo, hi);
-  return static_cast<double>((hi - lo).head<3>().norm());
-}
-
-/// LCCP on the view as pcl_ncut_seg_bench_views runs it: PCL's tutorial resolutions (metres),
-/// normals oriented towards the sensor (the PCD's VIEWPOINT), one label per point.
+/// LCCP on the view at the chosen settings for views, normals towards the sensor (the PCD's
+/// VIEWPOINT).
 Labelled::Ptr lccpView(const Cloud& cloud) {
-  std::vector<float> xyz;
-  xyz.reserve(3 * cloud.size());
-  for (const auto& p : cloud)
-    xyz.insert(xyz.end(), {p.x, p.y, p.z});
-  const double d = diagonalOf(cloud);
-  pcl_ncut_seg::PeerParams params;
-  params.voxel_fraction = 0.0075 / d;
-  params.seed_fraction = 0.03 / d;
   const Eigen::Vector4f& o = cloud.sensor_origin_;
-  params.viewpoint = std::array<float, 3>{{o[0], o[1], o[2]}};
-  std::vector<int> labels;
-  std::string error;
-  if (!pcl_ncut_seg::segmentWithPclPeer(xyz, false, params, labels, &error)) {
-    std::fprintf(stderr, "LCCP failed: %s\n", error.c_str());
-    return nullptr;
-  }
-  Labelled::Ptr out(new Labelled);
-  out->resize(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    pcl::PointXYZL& q = (*out)[i];
-    q.x = cloud[i].x, q.y = cloud[i].y, q.z = cloud[i].z;
-    q.label = labels[i] < 0 ? 0u : static_cast<std::uint32_t>(labels[i]); // 0: no segment
-  }
-  return out;
+  return pcl_ncut_seg_bench::lccpLabels(cloud, true, std::array<float, 3>{{o[0], o[1], o[2]}});
 }
 
-/// LCCP on a whole model as pcl_ncut_seg_bench runs it (voxels of 1% of the diagonal).
+/// LCCP on a whole model at the chosen settings for whole objects.
 Labelled::Ptr lccpModel(const Cloud::Ptr& cloud) {
-  return pcl_ncut_seg_bench::lccpWholeModel(cloud, static_cast<float>(diagonalOf(*cloud) / 100.0));
+  return pcl_ncut_seg_bench::lccpLabels(*cloud, false);
 }
 
 /// Child: read `in`, segment it with `method`, write the labelled cloud to `out`; print
@@ -274,9 +247,10 @@ int main(int argc, char** argv) {
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
   const std::string ours_threads = threads == 0 ? "all " + std::to_string(cores) + " cores"
                                                 : std::to_string(threads) + " threads";
-  std::printf("pcl_ncut_seg_bench_sizes: %ld cores, ours on %s (--threads %u), LCCP on one; load "
-              "average at start %s\n",
-              cores, ours_threads.c_str(), threads, loadAverage().c_str());
+  std::printf("pcl_ncut_seg_bench_sizes (build %s): %ld cores, ours on %s (--threads %u), LCCP "
+              "on one; load average at start %s\n",
+              pcl_ncut_seg::buildDescription(), cores, ours_threads.c_str(), threads,
+              loadAverage().c_str());
   std::printf("%-10s %8s %-4s %6s %6s %6s %6s %6s %6s %6s %7s %6s %7s %7s %5s %4s %4s\n", "cloud",
               "n", "", "read", "kNN", "Cen", "Snod", "LRef", "HSeg", "PSeg", "segment", "write",
               "whole", "peak MB", "B/pt", "segs", "runs");

@@ -10,14 +10,15 @@
  * Ours runs with the defaults on the organized cloud (NaNs included) and on its valid points
  * alone (unorganized, sensor origin kept: the crop a tabletop pipeline hands over), on one
  * thread and on all cores; LCCP as the evaluator runs it (eval/psb_peers.h: normals towards the
- * sensor, supervoxels, LCCP) with the resolutions of PCL's LCCP tutorial (voxels of 7.5 mm, seeds
- * of 3 cm), on the valid points. Prints the wall time of each (the median of 5 runs); skips when
- * the data is absent.
+ * sensor, supervoxels, LCCP with the sanity criterion) at the settings chosen for views
+ * (results/peer_settings.csv), on the valid points. Prints the wall time of each (the median of 5
+ * runs); skips when the data is absent.
  */
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
+#include "build_info.h"
 #include "depth_view_pcl.h"
 #include "psb_peers.h"
 #include "timing.h"
@@ -134,31 +135,23 @@ Seconds timeOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, std::siz
   return secs;
 }
 
-/** Normals, supervoxels and LCCP on the valid points, as the evaluator runs them. */
+/** Normals, supervoxels and LCCP on the valid points, at the settings chosen for views, with
+ * normals towards the sensor. */
 Seconds timeLccp(const pcl_ncut_seg::DepthView& view, std::size_t* segments) {
   const std::vector<float> xyz = validPoints(view);
-  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    lo[i % 3] = std::min(lo[i % 3], xyz[i]);
-    hi[i % 3] = std::max(hi[i % 3], xyz[i]);
-  }
-  const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                             (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  pcl_ncut_seg::PeerParams params; // PCL's tutorial resolutions, in metres
-  params.voxel_fraction = 0.0075 / d;
-  params.seed_fraction = 0.03 / d;
+  pcl::PointCloud<pcl::PointXYZ> cloud;
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3)
+    cloud.push_back(pcl::PointXYZ(xyz[i], xyz[i + 1], xyz[i + 2]));
   const auto& o = view.pose.origin;
-  params.viewpoint = std::array<float, 3>{
+  const std::array<float, 3> origin{
       {static_cast<float>(o[0]), static_cast<float>(o[1]), static_cast<float>(o[2])}};
-  std::vector<int> labels;
-  std::string error;
   const double start = now(), cpu = cpuNow();
-  if (!pcl_ncut_seg::segmentWithPclPeer(xyz, false, params, labels, &error)) {
-    std::fprintf(stderr, "LCCP failed: %s\n", error.c_str());
-    std::exit(2);
-  }
+  const auto labels = pcl_ncut_seg_bench::lccpLabels(cloud, true, origin);
   const Seconds secs{now() - start, cpuNow() - cpu};
-  *segments = std::set<int>(labels.begin(), labels.end()).size();
+  std::set<std::uint32_t> distinct;
+  for (const auto& p : *labels)
+    distinct.insert(p.label);
+  *segments = distinct.size();
   return secs;
 }
 
@@ -258,8 +251,9 @@ int main(int argc, char** argv) {
   const pcl_ncut_seg::DepthView object = pcl_ncut_seg_bench::objectView(mesh, 20000);
   const pcl_ncut_seg::DepthView frame = tableView(mesh);
   const unsigned cores = std::max(1u, static_cast<unsigned>(sysconf(_SC_NPROCESSORS_ONLN)));
-  std::printf("pcl_ncut_seg_bench_views: 640 x 480 frames, load average %s, max_points %s\n",
-              pcl_ncut_seg_bench::loadAverage().c_str(),
+  std::printf("pcl_ncut_seg_bench_views (build %s): 640 x 480 frames, load average %s, "
+              "max_points %s\n",
+              pcl_ncut_seg::buildDescription(), pcl_ncut_seg_bench::loadAverage().c_str(),
               pcl_ncut_seg::parameterValue(g_params, "max_points").c_str());
   std::printf("%-34s %7s  %13s  %10s  %13s  %s\n", "cloud", "points", "ours 1 thread", "ours all",
               "LCCP", "segments ours / LCCP");
@@ -269,14 +263,15 @@ int main(int argc, char** argv) {
                 std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]));
   measure(label, object, cores);
   measure("(b) bunny on a table, full frame", frame, cores);
-  std::printf("Seconds, wall / CPU, of the run of median wall time among %d (ours on all n\n"
-              "cores: wall). Ours with the defaults on the organized cloud, then on its valid\n"
-              "points alone (unorganized, sensor origin kept: a tabletop pipeline's crop); LCCP:\n"
-              "PCL's normals, supervoxels (7.5 mm voxels, 3 cm seeds) and LCCP on the valid\n"
-              "points (one thread). Segments: distinct labels. Below each cloud, ours' phases\n"
-              "(wall seconds) on one thread and on all cores with the default kd-tree, on one\n"
-              "thread with pcl::search::OrganizedNeighbor given to setSearchMethod(), and on the\n"
-              "crop on one thread.\n",
-              kRuns);
+  std::printf(
+      "Seconds, wall / CPU, of the run of median wall time among %d (ours on all n\n"
+      "cores: wall). Ours with the defaults on the organized cloud, then on its valid\n"
+      "points alone (unorganized, sensor origin kept: a tabletop pipeline's crop); LCCP:\n"
+      "PCL's normals, supervoxels and LCCP at results/peer_settings.csv's views row, on the valid\n"
+      "points (one thread). Segments: distinct labels. Below each cloud, ours' phases\n"
+      "(wall seconds) on one thread and on all cores with the default kd-tree, on one\n"
+      "thread with pcl::search::OrganizedNeighbor given to setSearchMethod(), and on the\n"
+      "crop on one thread.\n",
+      kRuns);
   return 0;
 }

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The ablation: scripts/report.sh with every stage at its default (OUT/base/), then once per
-# extension and detector with that stage off and everything else at its default, into
-# OUT/off-<stage>/; `scripts/report.py REPORT_OUT results/report.md OUT` then writes what each
-# stage changes to results/ablation.md. Stages that act only on open views run on the views alone.
+# The ablation: scripts/report.sh with every stage at its default (OUT/<split>/base/), then once
+# per extension and detector with that stage off and everything else at its default, into
+# OUT/<split>/off-<stage>/, on the dev and validation splits (report.sh's SPLITS);
+# `scripts/report.py REPORT_OUT results/report.md OUT` then writes what each stage changes to
+# results/ablation.md. Stages that act only on open views run on the views alone.
 #
 #   bash scripts/ablation.sh OUT [stage ...]
 #

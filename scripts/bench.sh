@@ -33,8 +33,8 @@ SIZES=("$BENCH/pcl_ncut_seg_bench_sizes") # 10M points included: about a minute
 {
   echo "# Speed"
   echo
-  echo "Written by \`scripts/bench.sh\` on $(date -u +%Y-%m-%d); build" \
-    "$(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo unknown); machine:" \
+  echo "Written by \`scripts/bench.sh\` on $(date -u +%Y-%m-%d); each program prints its own" \
+    "build on its first line; machine:" \
     "$(nproc) cores ($(sed -n 's/^model name[^:]*: //p' /proc/cpuinfo | head -n 1))," \
     "$(uname -sr); load average before the runs $(cut -d' ' -f1-3 /proc/loadavg)."
   echo

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # From a fresh Debian 12 machine to a demo result: installs what the tool needs (a compiler,
 # CMake, PCL; as root or with sudo), builds the pcl_ncut_seg tool in Release, and segments the
-# bundled armadillo model into build/armadillo_segments.pcd (view it with pcl_viewer, from
-# pcl-tools, or with the project's viewer, target pcl_ncut_seg_viewer).
+# bundled armadillo model into build/armadillo_segments.pcd; builds the project's viewer too,
+# which shows the segments.
 #
 #   bash scripts/demo.sh
 #
@@ -20,10 +20,12 @@ bash scripts/install_deps.sh --tool
 cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPCL_NCUT_SEG_BUILD_TOOLS=ON \
   -DPCL_NCUT_SEG_BUILD_TESTS=OFF -DPCL_NCUT_SEG_BUILD_EVAL=OFF -DPCL_NCUT_SEG_BUILD_PYTHON=OFF \
   -DPCL_NCUT_SEG_BUILD_ROS=OFF
-cmake --build "$BUILD_DIR" -j "$JOBS" --target pcl_ncut_seg_tool
+cmake --build "$BUILD_DIR" -j "$JOBS" --target pcl_ncut_seg_tool pcl_ncut_seg_viewer
 
 cd "$BUILD_DIR"
 ./tools/pcl_ncut_seg
 echo
-echo "Segments written to $BUILD_DIR/armadillo_segments.pcd; view them with:"
-echo "  pcl_viewer $BUILD_DIR/armadillo_segments.pcd"
+echo "Segments written to $BUILD_DIR/armadillo_segments.pcd. To see them (the viewer segments"
+echo "the model with the same defaults; keys 1-4 switch between segments, centrality, supernodes):"
+echo "  $BUILD_DIR/tools/pcl_ncut_seg_viewer"
+echo "Without a display: $BUILD_DIR/tools/pcl_ncut_seg_viewer -screenshot armadillo.png (under xvfb-run -a)"

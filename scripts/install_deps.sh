@@ -14,7 +14,6 @@ TOOL_PACKAGES=(
 )
 # The tests, the lab and the other front ends (scripts/test.sh, .ci/run).
 FULL_PACKAGES=(
-  libspectra-dev
   libgtest-dev
   python3-dev python3-pybind11 python3-numpy python3-pytest   # the Python module and its tests
   python3-open3d python3-mypy      # the Open3D tests and example; the stub checked by mypy, stubtest

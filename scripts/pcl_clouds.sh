@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# What the tool gives on each of PCL's test clouds (../shared/data/pcl): points, segments,
+# What the tool gives on each of PCL's test clouds (../shared/data/pcl) and on the bundled
+# models (data/armadillo.pcd, data/hand.pcd, as data/README.md says): points, segments,
 # whether the cloud counted as one view, and the whole process' wall time, with the defaults;
 # written to results/pcl_clouds.md (atomically) with the command, the build and the machine,
 # and a picture of each cloud's segments from pcl_ncut_seg_viewer (off-screen, xvfb-run) in
@@ -28,15 +29,15 @@ fi
 WORK="$(mktemp -d)"
 trap 'rm -rf "$WORK"' EXIT
 {
-  echo "# PCL's test clouds"
+  echo "# PCL's test clouds and the bundled models"
   echo
   echo "Written by \`scripts/pcl_clouds.sh\` on $(date -u +%Y-%m-%d) with \`$(basename "$TOOL") CLOUD OUT.pcd\`" \
-    "(the defaults); build $(git -C "$ROOT" describe --always --dirty 2>/dev/null || echo unknown);" \
+    "(the defaults); build $("$TOOL" -version | sed -n 's/.*(build \(.*\))$/\1/p') (the tool's own);" \
     "machine: $(nproc) cores, $(uname -sr), load average $(cut -d" " -f1-3 /proc/loadavg). Time: the whole process (read, segment, write), wall seconds."
   echo
   echo "| cloud | points | analysed | segments | view | seconds | segments (pcl_ncut_seg_viewer) |"
   echo "|---|---|---|---|---|---|---|"
-  for cloud in "$DATA"/*.pcd; do
+  for cloud in "$DATA"/*.pcd "$ROOT"/data/*.pcd; do
     name="$(basename "$cloud")"
     start=$(date +%s.%N)
     if ! "$TOOL" "$cloud" "$WORK/out.pcd" > "$WORK/log" 2>&1; then
@@ -50,7 +51,8 @@ trap 'rm -rf "$WORK"' EXIT
     view="$(sed -n 's/^view: //p' "$WORK/log")"
     picture=""
     png="${name%.pcd}.png"
-    if [ "$PICTURES" = 1 ] &&
+    # Pictures of PCL's clouds only: the README shows the bundled armadillo's.
+    if [ "$PICTURES" = 1 ] && [ "$(dirname "$cloud")" = "$DATA" ] &&
       xvfb-run -a "$VIEWER" "$cloud" -screenshot "$WORK/$png" -view segments -quiet \
         > "$WORK/viewer.log" 2>&1 && [ -s "$WORK/$png" ]; then
       mv "$WORK/$png" "$IMAGES/$png"

@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
 """Writes the report of scripts/report.sh's runs: every kind of input on both halves of the dev
-split (models base+1..3 and base+4..6 of each category) and per category, beside LCCP, CPC and
-the people; and, for every run named off-<stage>, what turning that stage off changes.
+split (models base+1..3 and base+4..6 of each category) and on the validation split (base+17..20,
+where nothing was chosen), per category, beside LCCP, CPC and the people; and, for every run
+named off-<stage>, what turning that stage off changes (the ablation, in a file of its own).
 
-    python3 scripts/report.py OUT results/report.md
+    python3 scripts/report.py OUT results/report.md [ABLATION_OUT [results/ablation.md]]
 
-REPORT_TITLE replaces the title, for a report of some of the inputs (results/views_unknown_origin.md:
-REPORT_TITLE="Views with the sensor origin unknown", from report.sh with INPUTS=views_unknown_origin).
-OUT holds <config>/<input>/models.csv (the evaluator's) and <config>/<input>/command.
+OUT holds <split>/<config>/<input>/ with the evaluator's models.csv and build, and report.sh's
+command. Every run of a file must come from one build of the evaluator: the script refuses to
+write a file whose runs name more than one.
 """
 import csv
 import datetime
 import os
 import platform
-import subprocess
 import sys
 from collections import defaultdict
 
@@ -32,11 +32,11 @@ INPUTS = [  # (folder, mode in models.csv, label)
     ("views_unknown_origin", "voxel", "view: voxel crop, origin unknown"),
     ("views_unknown_origin", "laser", "view: laser-like, origin unknown"),
 ]
+SPLITS = ("dev", "val")
 HALVES = ("1-3", "4-6")
-# Stages that the ablation below led to remove (their runs were made before the removal).
-REMOVED = {"organized_rim"}
 # A change smaller than this in a mean over a half (19 x 3 models) is noise.
 NOISE = 0.002
+PEERS = (("lccp", "lccp", "LCCP"), ("cpc", "cpc", "CPC"))  # (method, config, name)
 
 
 def half(model_id):
@@ -44,23 +44,40 @@ def half(model_id):
 
 
 def read_runs(out):
-    """{(config, folder, mode, method): {id: [ri, hamming, segments, seconds] over draws}}"""
+    """({(split, config, folder, mode, method): {id: [[ri, hamming, segments, seconds]...]}},
+    {id: category}, {build: [run folders]}, [commands])"""
     runs = defaultdict(lambda: defaultdict(list))
-    categories = {}
-    for config in sorted(os.listdir(out)):
-        for folder, _, _ in INPUTS:
-            path = os.path.join(out, config, folder, "models.csv")
-            if not os.path.exists(path):
-                continue
-            with open(path, newline="") as f:
-                for row in csv.DictReader(f):
-                    model_id = int(row["id"])
-                    categories[model_id] = row["category"]
-                    key = (config, folder, row["mode"], row["method"])
-                    runs[key][model_id].append(
-                        [float(row["one_minus_rand_index"]), float(row["hamming"]),
-                         float(row["segments"]), float(row["seconds"])])
-    return runs, categories
+    categories, builds, commands = {}, defaultdict(list), []
+    for split in SPLITS:
+        if not os.path.isdir(os.path.join(out, split)):
+            continue
+        for config in sorted(os.listdir(os.path.join(out, split))):
+            for folder in sorted({f for f, _, _ in INPUTS}):
+                run = os.path.join(out, split, config, folder)
+                path = os.path.join(run, "models.csv")
+                if not os.path.exists(path):
+                    continue
+                build = os.path.join(run, "build")
+                builds[open(build).read().strip() if os.path.exists(build) else "unknown"].append(
+                    run)
+                commands.append(open(os.path.join(run, "command")).read().strip())
+                with open(path, newline="") as f:
+                    for row in csv.DictReader(f):
+                        model_id = int(row["id"])
+                        categories[model_id] = row["category"]
+                        key = (split, config, folder, row["mode"], row["method"])
+                        runs[key][model_id].append(
+                            [float(row["one_minus_rand_index"]), float(row["hamming"]),
+                             float(row["segments"]), float(row["seconds"])])
+    return runs, categories, builds, commands
+
+
+def one_build(builds, out):
+    """The one build every run came from; exits when there is none or more than one."""
+    if len(builds) != 1:
+        detail = "; ".join(f"{b}: {len(r)} runs, e.g. {r[0]}" for b, r in sorted(builds.items()))
+        sys.exit(f"report.py: the runs under {out} come from {len(builds)} builds ({detail})")
+    return next(iter(builds))
 
 
 def mean(values):
@@ -111,163 +128,208 @@ def machine():
     return f"{os.cpu_count()} cores ({model}){mem}, {platform.system()} {platform.release()}"
 
 
-def build():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    try:
-        return subprocess.run(["git", "-C", root, "describe", "--always", "--dirty"],
-                              capture_output=True, text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
+class Scores:
+    """The runs of one report, read by split, config, input and method."""
+
+    def __init__(self, runs, categories):
+        self.runs = runs
+        self.categories = categories
+        self.ids = {split: sorted({i for k, v in runs.items() if k[0] == split for i in v})
+                    for split in SPLITS}
+
+    def get(self, split, config, folder, mode, method, ids=None):
+        """[1 - RI, Hamming, segments, seconds] over the split's models (or ids), or None."""
+        key = (split, config, folder, mode, method)
+        if key not in self.runs:
+            return None
+        return means(self.runs[key], self.ids[split] if ids is None else ids)[0]
+
+    def halves(self, config, folder, mode, method):
+        """The dev halves: two lists as get(), or None."""
+        if ("dev", config, folder, mode, method) not in self.runs:
+            return None
+        return [self.get("dev", config, folder, mode, method,
+                         [i for i in self.ids["dev"] if half(i) == h]) for h in HALVES]
+
+    def cell(self, config, folder, mode, method, metric):
+        """'a / b | v': the dev halves, then the validation split."""
+        h = self.halves(config, folder, mode, method)
+        v = self.get("val", config, folder, mode, method)
+        dev = pair(h[0][metric], h[1][metric]) if h else ""
+        return f"{dev} | {fmt(v[metric]) if v else ''}"
 
 
-def run_build(out, config, folder):
-    """The build a run was made with, as report.sh recorded it."""
-    path = os.path.join(out, config, folder, "build")
-    return f"  # build {open(path).read().strip()}" if os.path.exists(path) else ""
-
-
-def header(out, configs, md):
-    md.append("# " + os.environ.get("REPORT_TITLE", "Every kind of input, every stage") + "\n")
+def header(title, out, build, commands, md):
+    md.append(f"# {title}\n")
     md.append(f"Written by `scripts/report.py` on {datetime.date.today()} from the runs in "
-              f"`{out}`; build {build()}; machine: {machine()}. The evaluator's commands:\n")
+              f"`{out}`; every run's evaluator was build {build} (the build each run recorded). "
+              f"Machine: {machine()}. The evaluator's commands:\n")
     md.append("```")
-    for config in configs:
-        for folder in sorted({f for f, _, _ in INPUTS}):
-            path = os.path.join(out, config, folder, "command")
-            if os.path.exists(path):
-                md.append(open(path).read().strip() + run_build(out, config, folder))
+    md += commands
     md.append("```\n")
-    md.append("Figures are means over models (each model's draws and views averaged first); "
-              "`a / b` gives the two halves of the dev split, models base+1..3 / base+4..6 of "
-              "each category. Lower is better for 1 - RI and Hamming. Segments are per model, "
-              "or per view on views.\n")
+    md.append("Figures are means over models (each model's draws and views averaged first). "
+              "'dev' gives the two halves of the dev split, models base+1..3 / base+4..6 of each "
+              "category, on which every default was chosen; 'val' the validation split, models "
+              "base+17..20, which chose nothing. Lower is better for 1 - RI and Hamming. "
+              "Segments are per model, or per view on views.\n")
 
 
-def method_cell(runs, config, folder, mode, method, ids_by, metric):
-    key = (config, folder, mode, method)
-    if key not in runs:
-        return ""
-    a, _ = means(runs[key], ids_by[HALVES[0]])
-    b, _ = means(runs[key], ids_by[HALVES[1]])
-    if metric == 2:
-        return fmt(means(runs[key], ids_by["all"])[0][2], 1)
-    return pair(a[metric], b[metric])
-
-
-def main_table(runs, ids_by, md):
+def main_tables(s, md):
     md.append("## Every kind of input: ours beside LCCP, CPC and the people\n")
-    md.append("LCCP and CPC run at the settings of `results/peers.md`. 'whole' is ours on the "
-              "whole object (face centroids) scored on the faces the view sees.\n")
-    md.append("| input | ours 1 - RI | ours Hamming | ours seg. | whole 1 - RI | LCCP 1 - RI | "
-              "LCCP Hamming | LCCP seg. | CPC 1 - RI | CPC Hamming | CPC seg. | people 1 - RI | "
-              "people seg. |")
-    md.append("|---" * 13 + "|")
+    md.append("LCCP and CPC run at the settings of `results/peers.md` "
+              "(`results/peer_settings.csv`). 'whole' is ours on the whole object (face "
+              "centroids) scored on the faces the view sees.\n")
+    for metric, name in ((0, "1 - RI"), (1, "Hamming")):
+        md.append(f"### {name}\n")
+        md.append("| input | ours dev | ours val | whole dev | whole val | LCCP dev | LCCP val | "
+                  "CPC dev | CPC val | people dev | people val |")
+        md.append("|---" * 11 + "|")
+        for folder, mode, label in INPUTS:
+            if not s.halves("defaults", folder, mode, "ours"):
+                continue
+            cells = [s.cell("defaults", folder, mode, "ours", metric),
+                     s.cell("defaults", folder, mode, "ours whole", metric),
+                     *(s.cell(cfg, folder, mode, m, metric) for m, cfg, _ in PEERS),
+                     s.cell("lccp", folder, mode, "human", metric)]
+            md.append(f"| {label} | " + " | ".join(cells) + " |")
+        md.append("")
+    md.append("### Segments (per model or view; dev | val)\n")
+    md.append("| input | ours | LCCP | CPC | people |")
+    md.append("|---" * 5 + "|")
     for folder, mode, label in INPUTS:
-        if ("defaults", folder, mode, "ours") not in runs:
+        if not s.halves("defaults", folder, mode, "ours"):
             continue
-        cells = [label]
-        for method, cfg, metrics in (("ours", "defaults", (0, 1, 2)),
-                                     ("ours whole", "defaults", (0,)),
-                                     ("lccp", "lccp", (0, 1, 2)), ("cpc", "cpc", (0, 1, 2)),
-                                     ("human", "lccp", (0, 2))):
-            for m in metrics:
-                cells.append(method_cell(runs, cfg, folder, mode, method, ids_by, m))
-        md.append("| " + " | ".join(cells) + " |")
+        cells = []
+        for method, cfg in (("ours", "defaults"), ("lccp", "lccp"), ("cpc", "cpc"),
+                            ("human", "lccp")):
+            d, v = s.get("dev", cfg, folder, mode, method), s.get("val", cfg, folder, mode, method)
+            cells.append(f"{fmt(d[2], 1) if d else ''} / {fmt(v[2], 1) if v else ''}")
+        md.append(f"| {label} | " + " | ".join(cells) + " |")
     md.append("")
 
 
-def category_tables(runs, categories, md):
-    md.append("## Per category (1 - RI / Hamming, all six models)\n")
-    cats = []
-    for i in sorted(categories):
-        if categories[i] not in cats:
-            cats.append(categories[i])
+def peer_wins(s, md):
+    """Where a peer does better than ours: every (input, peer, metric) with the peer lower on a
+    dev half or on the validation split."""
+    md.append("## Where a peer does better than ours\n")
+    md.append("Every input, peer and measure where the peer's mean is lower than ours on a half "
+              "of the dev split or on the validation split (by any margin).\n")
+    rows = []
     for folder, mode, label in INPUTS:
-        if ("defaults", folder, mode, "ours") not in runs:
+        ours_h = s.halves("defaults", folder, mode, "ours")
+        if not ours_h:
+            continue
+        ours_v = s.get("val", "defaults", folder, mode, "ours")
+        for method, cfg, name in PEERS:
+            peer_h = s.halves(cfg, folder, mode, method)
+            peer_v = s.get("val", cfg, folder, mode, method)
+            for metric, mname in ((0, "1 - RI"), (1, "Hamming")):
+                where = [f"dev {h}" for k, h in enumerate(HALVES)
+                         if peer_h and peer_h[k][metric] < ours_h[k][metric]]
+                if peer_v and ours_v and peer_v[metric] < ours_v[metric]:
+                    where.append("val")
+                if where:
+                    rows.append(f"| {label} | {name} | {mname} | {', '.join(where)} |")
+    if rows:
+        md.append("| input | peer | measure | where the peer is lower |")
+        md.append("|---|---|---|---|")
+        md += rows
+    else:
+        md.append("Nowhere: ours is lower on every input, measure, dev half and the validation "
+                  "split.")
+    md.append("")
+
+
+def category_tables(s, md):
+    md.append("## Per category (1 - RI / Hamming; dev: all six models, val: all four)\n")
+    cats = []
+    for i in sorted(s.categories):
+        if s.categories[i] not in cats:
+            cats.append(s.categories[i])
+    for folder, mode, label in INPUTS:
+        if not s.halves("defaults", folder, mode, "ours"):
             continue
         md.append(f"### {label}\n")
-        md.append("| category | ours | segments | LCCP | segments | CPC | segments | people |")
-        md.append("|---" * 8 + "|")
+        md.append("| category | ours dev | ours val | seg. dev / val | LCCP dev | LCCP val | "
+                  "CPC dev | CPC val | people dev | people val |")
+        md.append("|---" * 10 + "|")
         for c in cats + ["Overall"]:
-            ids = [i for i in sorted(categories) if c == "Overall" or categories[i] == c]
             cells = ["**Overall**" if c == "Overall" else c]
-            for method, cfg, seg in (("ours", "defaults", True), ("lccp", "lccp", True),
-                                     ("cpc", "cpc", True), ("human", "lccp", False)):
-                key = (cfg, folder, mode, method)
-                if key not in runs:
-                    cells += [""] * (2 if seg else 1)
-                    continue
-                m, _ = means(runs[key], ids)
-                cells.append(pair(m[0], m[1]))
-                if seg:
-                    cells.append(fmt(m[2], 1))
+            for method, cfg in (("ours", "defaults"), ("lccp", "lccp"), ("cpc", "cpc"),
+                                ("human", "lccp")):
+                seg = []
+                for split in SPLITS:
+                    ids = [i for i in s.ids[split] if c == "Overall" or s.categories[i] == c]
+                    m = s.get(split, cfg, folder, mode, method, ids)
+                    cells.append(pair(m[0], m[1]) if m else "")
+                    seg.append(fmt(m[2], 1) if m else "")
+                if method == "ours":
+                    cells.append(" / ".join(seg))
             md.append("| " + " | ".join(cells) + " |")
         md.append("")
 
 
-def stage_deltas(runs, ids_by, off):
-    """Per input: (label, [(d RI, d Hamming) per half], base means, off means)."""
+def stage_deltas(s, off):
+    """Per input: (label, [(d RI, d Hamming) per dev half, then val], base, off segments)."""
     out = []
     for folder, mode, label in INPUTS:
-        base = runs.get(("base", folder, mode, "ours"))
-        other = runs.get((off, folder, mode, "ours"))
-        if not base or not other:
+        base_h = s.halves("base", folder, mode, "ours")
+        off_h = s.halves(off, folder, mode, "ours")
+        if not base_h or not off_h:
             continue
-        halves = [[i for i in ids_by[h] if i in other] for h in HALVES]
-        d = []
-        for ids in halves:
-            mb, _ = means(base, ids)
-            mo, _ = means(other, ids)
-            d.append((mo[0] - mb[0], mo[1] - mb[1]))
-        mb, _ = means(base, halves[0] + halves[1])
-        mo, _ = means(other, halves[0] + halves[1])
-        out.append((label, d, mb, mo))
+        d = [(off_h[k][0] - base_h[k][0], off_h[k][1] - base_h[k][1]) for k in range(2)]
+        base_v = s.get("val", "base", folder, mode, "ours")
+        off_v = s.get("val", off, folder, mode, "ours")
+        d.append((off_v[0] - base_v[0], off_v[1] - base_v[1]) if base_v and off_v else None)
+        base_d = s.get("dev", "base", folder, mode, "ours")
+        off_d = s.get("dev", off, folder, mode, "ours")
+        out.append((label, d, base_d[2], off_d[2]))
     return out
 
 
 def verdict(deltas):
-    """(inputs where the stage pays, inputs where it costs)."""
+    """(inputs where the stage pays, inputs where it costs), on the dev halves and on val."""
     pays, costs = [], []
     for label, d, _, _ in deltas:
-        if any(x <= -NOISE for h in d for x in h):
+        parts = [x for x in d if x is not None]
+        if any(v <= -NOISE for x in parts for v in x):
             costs.append(label)
-        elif any(all(h[k] >= NOISE for h in d) for k in (0, 1)):
+        elif any(all(x[k] >= NOISE for x in parts) for k in (0, 1)):
             pays.append(label)
     return pays, costs
 
 
-def ablation(runs, ids_by, configs, md, abl_dir):
-    offs = [c for c in configs if c.startswith("off-")]
-    if not offs:
-        return
-    builds = sorted({open(os.path.join(abl_dir, c, f, "build")).read().strip()
-                     for c in configs for f, _, _ in INPUTS
-                     if os.path.exists(os.path.join(abl_dir, c, f, "build"))})
-    md.append(f"From the runs in `{abl_dir}` (build {', '.join(builds) or 'unknown'}; their "
-              "commands are in each run's folder): "
-              "fewer draws and views than the report, each stage off against the "
-              "defaults on the same points. A stage pays on an input when turning it off makes "
-              f"both halves worse by at least {NOISE} in 1 - RI or Hamming and neither better by "
-              "as much in the other; it costs on an input when turning it off makes a half "
-              f"better by at least {NOISE} in either. Detail per input follows the table.\n")
+def signed(x, k):
+    return f"{x[k]:+.3f}" if x is not None else ""
+
+
+def ablation(s, md, out):
+    offs = sorted({k[1] for k in s.runs if k[1].startswith("off-")})
+    md.append(f"From the runs in `{out}`, with fewer draws and views than the report: each stage "
+              "off against the defaults on the same points, on both halves of the dev split "
+              "and on the validation split. A stage pays on an input when turning it off makes "
+              f"the dev halves and the validation split all worse by at least {NOISE} in 1 - RI "
+              "or Hamming and none better by as much in the other; it costs on an input when "
+              f"turning it off makes a dev half or the validation split better by at least "
+              f"{NOISE} in either. Detail per input follows the table.\n")
     md.append("| stage | pays on | costs on |")
     md.append("|---|---|---|")
     for off in offs:
-        pays, costs = verdict(stage_deltas(runs, ids_by, off))
-        name = off[4:] + (" (removed)" if off[4:] in REMOVED else "")
-        md.append(f"| {name} | {', '.join(pays) or '—'} | {', '.join(costs) or '—'} |")
+        pays, costs = verdict(stage_deltas(s, off))
+        md.append(f"| {off[4:]} | {', '.join(pays) or '—'} | {', '.join(costs) or '—'} |")
     md.append("")
     md.append("## Each stage off, per input\n")
-    md.append("Off minus defaults, `1-3 / 4-6`: positive means the stage helps there. (The "
-              "runs shared a loaded machine, so their times are not compared here; speed is "
-              "`bench/`'s.)\n")
+    md.append("Off minus defaults, `dev 1-3 / dev 4-6 | val`: positive means the stage helps "
+              "there. (Times are not compared here; speed is `bench/`'s.)\n")
     for off in offs:
         md.append(f"### {off[4:]}\n")
-        md.append("| input | Δ 1 - RI | Δ Hamming | segments (defaults → off) |")
-        md.append("|---|---|---|---|")
-        for label, d, mb, mo in stage_deltas(runs, ids_by, off):
-            md.append(f"| {label} | {d[0][0]:+.3f} / {d[1][0]:+.3f} | "
-                      f"{d[0][1]:+.3f} / {d[1][1]:+.3f} | {fmt(mb[2], 1)} → {fmt(mo[2], 1)} |")
+        md.append("| input | Δ 1 - RI dev | Δ 1 - RI val | Δ Hamming dev | Δ Hamming val | "
+                  "segments dev (defaults → off) |")
+        md.append("|---|---|---|---|---|---|")
+        for label, d, seg_base, seg_off in stage_deltas(s, off):
+            md.append(f"| {label} | {signed(d[0], 0)} / {signed(d[1], 0)} | {signed(d[2], 0)} | "
+                      f"{signed(d[0], 1)} / {signed(d[1], 1)} | {signed(d[2], 1)} | "
+                      f"{fmt(seg_base, 1)} → {fmt(seg_off, 1)} |")
         md.append("")
 
 
@@ -284,29 +346,33 @@ def main():
     if len(sys.argv) not in (3, 4, 5):
         sys.exit("usage: report.py OUT REPORT.md [ABLATION_OUT [ABLATION.md]]")
     out, target = sys.argv[1], sys.argv[2]
-    runs, categories = read_runs(out)
+    runs, categories, builds, commands = read_runs(out)
     if not runs:
-        sys.exit(f"report.py: no models.csv under {out}")
-    configs = sorted({k[0] for k in runs}, key=lambda c: (c != "defaults", c))
-    ids_by = groups(categories)
+        sys.exit(f"report.py: no <split>/<config>/<input>/models.csv under {out}")
+    s = Scores(runs, categories)
     md = []
-    header(out, configs, md)
-    main_table(runs, ids_by, md)
-    category_tables(runs, categories, md)
-    write_atomically(target, md)
-    print(f"report.py: wrote {target}")
+    header("Every kind of input, on the dev and validation splits", out, one_build(builds, out),
+           commands, md)
+    main_tables(s, md)
+    peer_wins(s, md)
+    category_tables(s, md)
     if len(sys.argv) >= 4:  # the ablation, in its own file: it comes from its own runs
+        abl_out = sys.argv[3]
         abl_target = sys.argv[4] if len(sys.argv) == 5 else os.path.join(
             os.path.dirname(os.path.abspath(target)), "ablation.md")
-        abl_runs, _ = read_runs(sys.argv[3])
-        abl_configs = sorted({k[0] for k in abl_runs})
-        abl = [f"# What each stage buys\n",
-               f"Written by `scripts/report.py` on {datetime.date.today()}; machine: {machine()}. "
-               f"The inputs are those of [{os.path.basename(target)}]"
-               f"({os.path.basename(target)}).\n"]
-        ablation(abl_runs, ids_by, abl_configs, abl, sys.argv[3])
+        abl_runs, abl_categories, abl_builds, abl_commands = read_runs(abl_out)
+        if not abl_runs:
+            sys.exit(f"report.py: no runs under {abl_out}")
+        build = one_build(abl_builds, abl_out)
+        if build != one_build(builds, out):
+            sys.exit(f"report.py: the ablation's build {build} is not the report's")
+        abl = []
+        header("What each stage buys", abl_out, build, abl_commands, abl)
+        ablation(Scores(abl_runs, abl_categories), abl, abl_out)
         write_atomically(abl_target, abl)
         print(f"report.py: wrote {abl_target}")
+    write_atomically(target, md)
+    print(f"report.py: wrote {target}")
 
 
 if __name__ == "__main__":
