@@ -48,8 +48,8 @@ FLAG = {"voxel": "-peer_voxel", "seed": "-peer_seed", "normals": "-peer_normals"
 START = {"voxel": "0.01", "seed": "0.05", "normals": "estimated", "concavity": "10",
          "min_segment": "3", "cut_score": "0.16", "max_cuts": "25"}
 STAGES = [  # (peers, {key: values}); a stage varies its keys over the best of the one before
-    (("lccp", "cpc"), {"voxel": ["0.005", "0.01", "0.02"],
-                       "seed": ["0.03", "0.05", "0.08", "0.12"],
+    (("lccp", "cpc"), {"voxel": ["0.005", "0.01", "0.015", "0.02"],
+                       "seed": ["0.02", "0.03", "0.05", "0.08", "0.12"],
                        "normals": ["estimated", "mesh"]}),
     (("lccp",), {"concavity": ["5", "10", "20", "30"], "min_segment": ["0", "3", "10"]}),
     (("cpc",), {"concavity": ["5", "10", "20", "30"], "min_segment": ["0", "3", "10"]}),

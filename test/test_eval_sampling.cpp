@@ -179,6 +179,40 @@ TEST(EvalSampling, EachCubeSideTakesASampleOnItself) {
     EXPECT_EQ(c.xyz[3 * c.nearest[f] + axis[f]], centroids[3 * f + axis[f]]) << "side " << f;
 }
 
+TEST(EvalSampling, FaceNormalsPointOutwardWhicheverWayTheMeshIsWound) {
+  // Each side's normal points away from the cube's centre, for the mesh as written and for
+  // the same mesh with every triangle wound the other way (what LCCP and CPC are given).
+  TriangleMesh mesh = cube();
+  for (int wound = 0; wound < 2; ++wound) {
+    const std::vector<float> centroids = faceCentroids(mesh);
+    const std::vector<float> normals = outwardFaceNormals(mesh);
+    ASSERT_EQ(normals.size(), centroids.size());
+    for (std::size_t f = 0; f < 6; ++f) {
+      double dot = 0, length = 0;
+      for (int d = 0; d < 3; ++d) {
+        dot += normals[3 * f + d] * (centroids[3 * f + d] - 0.5);
+        length += normals[3 * f + d] * normals[3 * f + d];
+      }
+      EXPECT_NEAR(dot, 0.5, 1e-6) << "side " << f << ", winding " << wound;
+      EXPECT_NEAR(length, 1.0, 1e-6);
+    }
+    for (std::size_t t = 0; t < mesh.numTriangles(); ++t)
+      std::swap(mesh.faces[3 * t + 1], mesh.faces[3 * t + 2]);
+  }
+}
+
+TEST(EvalSampling, EachSampleTakesItsNearestFacesNormal) {
+  const TriangleMesh mesh = cube();
+  const std::vector<float> centroids = faceCentroids(mesh);
+  const std::vector<float> faces = outwardFaceNormals(mesh);
+  // Points just off the centres of the sides: each takes its own side's normal.
+  std::vector<float> points;
+  for (std::size_t f = 0; f < 6; ++f)
+    for (int d = 0; d < 3; ++d)
+      points.push_back(centroids[3 * f + d] + 0.01f * faces[3 * f + d]);
+  EXPECT_EQ(nearestFaceNormals(points, centroids, faces), faces);
+}
+
 // ------------------------------------------------------------------------------ permutation
 
 TEST(EvalSampling, RandomOrderIsASeededPermutation) {

@@ -109,6 +109,59 @@ TEST_F(EvalTool, RunsEveryMethodOnAModel) {
       EXPECT_EQ(rows.count("\"" + std::string(method) + "\"," + mode), 1u) << method << mode;
 }
 
+TEST_F(EvalTool, WritesTheBuildOfItsBinaryBesideTheReports) {
+  ASSERT_EQ(run("-version"), 0);
+  std::ifstream version_out(dir_ / "stdout.txt");
+  std::string version;
+  std::getline(version_out, version);
+  const std::string prefix = "pcl_ncut_seg ";
+  ASSERT_EQ(version.rfind(prefix, 0), 0u) << version;
+  std::string build = version.substr(version.find("(build ") + 7);
+  ASSERT_EQ(build.back(), ')');
+  build.pop_back();
+  const std::string args =
+      (dir_ / "psb").string() + " " + (dir_ / "out").string() + " -methods one -modes auto -quiet";
+  ASSERT_EQ(run(args), 0) << stderrText();
+  std::ifstream in(dir_ / "out" / "build");
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line, build) << "the build file names the binary's own build";
+}
+
+TEST_F(EvalTool, PeerSettingsComeFromTheirFile) {
+  const fs::path settings = dir_ / "peer_settings.csv";
+  const std::string header =
+      "peer,kind,voxel,seed,normals,concavity,min_segment,cut_score,max_cuts\n";
+  const std::string psb = (dir_ / "psb").string(), out = (dir_ / "out").string();
+  std::ofstream(settings) << header << "lccp,whole,0.02,0.1,mesh,10,0,0.16,25\n"
+                          << "cpc,views,0.02,0.08,estimated,20,3,0.1,10\n";
+  EXPECT_EQ(run(psb + " " + out + " -methods lccp,cpc -modes auto -quiet -peer_settings " +
+                settings.string()),
+            0)
+      << stderrText();
+  EXPECT_EQ(models().size(), 2u);
+  // A file that is no settings file, a bad row, a voxel not below its seed, and a flag over
+  // the file that breaks the same rule: one line, no output.
+  for (const std::string& text : {std::string("peer,kind\nlccp,whole\n"),
+                                  header + "lccp,whole,0.01,0.05,bogus,10,0,0.16,25\n",
+                                  header + "icp,whole,0.01,0.05,mesh,10,0,0.16,25\n",
+                                  header + "lccp,whole,0.05,0.05,mesh,10,0,0.16,25\n",
+                                  header + "lccp,whole,0.01,0.05,mesh,-1,0,0.16,25\n"}) {
+    fs::remove_all(dir_ / "out");
+    fs::create_directories(dir_ / "out");
+    std::ofstream(settings) << text;
+    EXPECT_EQ(run(psb + " " + out + " -methods lccp -peer_settings " + settings.string()), 1)
+        << text;
+    EXPECT_EQ(stderrText().find('\n'), stderrText().size() - 1) << stderrText();
+    EXPECT_TRUE(fs::is_empty(dir_ / "out")) << text;
+  }
+  std::ofstream(settings) << header << "lccp,whole,0.02,0.1,mesh,10,0,0.16,25\n";
+  EXPECT_EQ(run(psb + " " + out + " -methods lccp -peer_settings " + settings.string() +
+                " -peer_voxel 0.2"),
+            1);
+  EXPECT_EQ(run(psb + " " + out + " -methods lccp -peer_settings " + (dir_ / "none").string()), 1);
+}
+
 TEST_F(EvalTool, ScoresDepthViewsOnTheFacesTheySee) {
   const std::string args = (dir_ / "psb").string() + " " + (dir_ / "out").string() +
                            " -views 3 -resolution 96x72 -quiet";
