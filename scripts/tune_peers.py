@@ -188,6 +188,10 @@ def write(out, target, settings_target):
         body.append(f"## {peer.upper()}, {kind}\n")
         body.append("Chosen: `" + " ".join(setting_flags(best)) + "`"
                     + ("" if peer == "cpc" else " (CPC's cut settings unused)") + ".\n")
+        edges = grid_edges(best, peer, kind)
+        if edges:
+            body.append("At the edge of the grid (a value beyond it might do better still): "
+                        + ", ".join(edges) + ".\n")
         body.append("| input | dev 1 - RI | dev Hamming | dev seg. | validation 1 - RI | "
                     "validation Hamming | validation seg. |")
         body.append("|---" * 7 + "|")
@@ -260,6 +264,24 @@ def write(out, target, settings_target):
     with open(os.path.join(out, "chosen.csv")) as f:
         report.write_atomically(settings_target, f.read().rstrip("\n").split("\n"))
     print(f"tune_peers.py: wrote {target} and {settings_target}")
+
+
+def grid_edges(setting, peer, kind):
+    """The chosen values that are the smallest or largest of their grid (numbers only)."""
+    edges = []
+    for peers, grid in STAGES:
+        if peer not in peers:
+            continue
+        for key, values in grid.items():
+            if key == "normals":
+                continue
+            numbers = [float(v) for v in values]
+            value = float(setting[key])
+            if value == min(numbers) and value > 0:  # 0 (no smallest segment) has no beyond
+                edges.append(f"{key} {setting[key]} (the smallest tried)")
+            elif value == max(numbers):
+                edges.append(f"{key} {setting[key]} (the largest tried)")
+    return edges
 
 
 def _peers_with(history, setting, kind):
