@@ -15,7 +15,7 @@ before (the lowest mean of 1 - RI and Hamming over both halves of the dev split 
 of a kind):
   1. voxel and seed resolution (and, on whole objects, where the normals come from), both peers;
   2. concavity tolerance and smallest segment, each peer from its own best;
-  3. CPC's cut settings (smallest cut score, most cuts).
+  3. CPC's cut settings: the smallest cut score, then the most cuts.
 Kinds: 'whole' (face centroids, and 20k area-uniform samples) and 'views' (two views per model
 as a crop, a voxel-grid crop and laser-like samples, the sensor origin known). Runs that are
 there already (models.csv written) are not run again.
@@ -53,7 +53,8 @@ STAGES = [  # (peers, {key: values}); a stage varies its keys over the best of t
                        "normals": ["estimated", "mesh"]}),
     (("lccp",), {"concavity": ["5", "10", "20", "30"], "min_segment": ["0", "3", "10"]}),
     (("cpc",), {"concavity": ["5", "10", "20", "30"], "min_segment": ["0", "3", "10"]}),
-    (("cpc",), {"cut_score": ["0.08", "0.16", "0.25"], "max_cuts": ["10", "25", "50"]}),
+    (("cpc",), {"cut_score": ["0.08", "0.16", "0.25"]}),
+    (("cpc",), {"max_cuts": ["10", "25", "50"]}),
 ]
 
 
