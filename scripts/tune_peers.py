@@ -110,6 +110,13 @@ def halves_of(scores):
     return out
 
 
+def overall_of(scores):
+    """Per mode: the means over all the split's models, [1 - RI, Hamming, segments]."""
+    return {mode: [report.mean([v[c] for (m, _), v in scores.items() if m == mode])
+                   for c in range(3)]
+            for mode in sorted({m for m, _ in scores})}
+
+
 def objective(out, split, peers, peer, kind, setting):
     """The mean of 1 - RI and Hamming over both halves, every mode and every input of a kind."""
     values = []
@@ -200,11 +207,11 @@ def write(out, target, settings_target):
             dev = halves_of(read_scores(run_dir(out, "dev", (peer,) if (peer,) in
                                                  _peers_with(history, best, kind) else
                                                  ("lccp", "cpc"), inp, best), peer))
-            val = halves_of(read_scores(run_dir(out, "val", (peer,), inp, best), peer))
+            val = overall_of(read_scores(run_dir(out, "val", (peer,), inp, best), peer))
             for mode in dev:
-                d, v = dev[mode], val.get(mode)
+                d = dev[mode]
                 label = LABELS[inp] if kind == "whole" else f"view: {mode}"
-                vm = [report.mean([v[0][c], v[1][c]]) for c in range(3)] if v else [float("nan")] * 3
+                vm = val.get(mode, [float("nan")] * 3)
                 body.append(f"| {label} | {report.pair(d[0][0], d[1][0])} | "
                             f"{report.pair(d[0][1], d[1][1])} | "
                             f"{report.fmt(report.mean([d[0][2], d[1][2]]), 1)} | "
