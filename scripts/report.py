@@ -238,6 +238,27 @@ def peer_wins(s, md):
         md.append("Nowhere: ours is lower on every input, measure, dev half and the validation "
                   "split.")
     md.append("")
+    md.append("Per category: the categories where the peer's 1 - RI is lower than ours on the "
+              "dev split (its six models) or on the validation split.\n")
+    md.append("| input | peer | categories (dev) | categories (val) |")
+    md.append("|---|---|---|---|")
+    cats = list(dict.fromkeys(s.categories[i] for i in sorted(s.categories)))
+    for folder, mode, label in INPUTS:
+        if not s.halves("defaults", folder, mode, "ours"):
+            continue
+        for method, cfg, name in PEERS:
+            lower = []
+            for split in SPLITS:
+                names = []
+                for c in cats:
+                    ids = [i for i in s.ids[split] if s.categories[i] == c]
+                    ours = s.get(split, "defaults", folder, mode, "ours", ids)
+                    peer = s.get(split, cfg, folder, mode, method, ids)
+                    if ours and peer and peer[0] < ours[0]:
+                        names.append(c)
+                lower.append(", ".join(names) or "—")
+            md.append(f"| {label} | {name} | {lower[0]} | {lower[1]} |")
+    md.append("")
 
 
 def category_tables(s, md):
