@@ -176,7 +176,7 @@ TEST(BundledData, ModelsAreReproducedByTheirDocumentedCommands) {
     const fs::path source =
         fs::path(PCL_NCUT_SEG_SHARED_DATA) / "models" / ("cgal-" + name + ".off");
     if (!fs::exists(source))
-      GTEST_SKIP() << "shared data not found at " << source;
+      GTEST_SKIP() << "shared data absent: no " << source;
     pcl_ncut_seg::TriangleMesh mesh;
     ASSERT_TRUE(pcl_ncut_seg::readOff(source.string(), mesh));
     const std::vector<float> xyz = pcl_ncut_seg::sampleSurface(mesh, 8000, 1);
@@ -399,7 +399,7 @@ INSTANTIATE_TEST_SUITE_P(Psb, PsbModel,
 
 TEST(Psb, LimbCategoriesFollowThePartsBetterThanKMeans) {
   if (!haveData())
-    GTEST_SKIP() << "shared data not found at " << kPsbDir;
+    GTEST_SKIP() << "shared data absent: no " << kPsbDir;
   // The goal on these hands and four-legged animals is a mean 1 - Rand index of 0.2 or less.
   // It is not reached: the four-legged animals' heads and tails leak into the body with no
   // saddle between them (README, "Known limitations"); pcl_ncut_seg_bench_psb --limbs prints
