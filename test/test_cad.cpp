@@ -19,7 +19,6 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <set>
 
 #include <algorithm>
@@ -373,9 +372,11 @@ std::vector<int> meshFaces(const pcl_ncut_seg::TriangleMesh& mesh) {
 
 TEST(CadMode, RealMeshedCubeComesOutAsItsSixFaces) {
   const std::string path = std::string(PCL_NCUT_SEG_SHARED_DATA) + "/models/cgal-cube-meshed.off";
+  if (!std::filesystem::exists(path))
+    GTEST_SKIP() << "shared data absent: no " << path;
   pcl_ncut_seg::TriangleMesh mesh;
-  if (!std::ifstream(path).good() || !pcl_ncut_seg::readOff(path, mesh))
-    GTEST_SKIP() << "shared data not found: " << path;
+  std::string error;
+  ASSERT_TRUE(pcl_ncut_seg::readOff(path, mesh, &error)) << path << ": " << error;
   // Faces of the mesh by normal; the original faces of the file are its triangles.
   const std::vector<int> tri_face = meshFaces(mesh);
   std::vector<int> orig_face(mesh.num_original_faces, -1);

@@ -1,12 +1,15 @@
 /*
  * Every parameter at the edges of its valid range (accepted, and extract() gives a partition)
- * and just past them (rejected with a PCL_ERROR naming the setter, the old value kept); and
- * determinism: bit-identical output across runs and thread counts.
+ * and just past them (rejected with a PCL_ERROR naming the setter, the old value kept), through
+ * its setter and through setParameter() and setParameters() for every row of the parameter
+ * table; and determinism: bit-identical output across runs and thread counts.
  */
+#include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/extract_capturing.h>
 #include <support/graphs.h>
 #include <support/metrics.h>
+#include <support/parameter_values.h>
 #include <support/partition.h>
 #include <support/shapes.h>
 
@@ -36,120 +39,197 @@ using namespace pcl_ncut_seg::test;
 
 namespace {
 
+using pcl_ncut_seg::Adjacency;
+using pcl_ncut_seg::CentralityMode;
+using pcl_ncut_seg::ParameterInfo;
+using pcl_ncut_seg::StoppingRule;
+using std::nullopt;
+using OptD = std::optional<double>;
+using OptI = std::optional<int>;
+
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 const float kInf = std::numeric_limits<float>::infinity();
+const double kDMin = std::numeric_limits<double>::denorm_min();
+const double kDMax = std::numeric_limits<double>::max();
+const double kDInf = std::numeric_limits<double>::infinity();
+const double kDNaN = std::numeric_limits<double>::quiet_NaN();
 
+/** One call of a single-parameter setter of the PCL class. */
 struct ParamCase {
+  std::string row; ///< the parameter table's row it sets
   const char* setter;
   std::function<void(Seg&)> set;
-  std::function<bool(const Seg&)> took; ///< the getter shows the new value
+  std::function<bool(const Seg&)> took; ///< the getter shows the value set
 };
 
+/** Cases that set each value, which the getter must then show. */
+template <typename T>
+void addValid(std::vector<ParamCase>& v, const char* row, const char* setter, void (Seg::*set)(T),
+              T (Seg::*get)() const, std::vector<T> values) {
+  for (const T& x : values)
+    v.push_back({row, setter, [set, x](Seg& s) { (s.*set)(x); },
+                 [get, x](const Seg& s) { return (s.*get)() == x; }});
+}
+
+/** Cases that set each (bad) value; the setter took it when the getter no longer shows the
+ * default (a NaN taken shows as a change too). */
+template <typename T>
+void addBad(std::vector<ParamCase>& v, const char* row, const char* setter, void (Seg::*set)(T),
+            T (Seg::*get)() const, std::vector<T> values) {
+  for (const T& x : values)
+    v.push_back({row, setter, [set, x](Seg& s) { (s.*set)(x); },
+                 [get](const Seg& s) { return !((s.*get)() == (Seg().*get)()); }});
+}
+
+#define SETTER(row, name, get) row, #name, &Seg::name, &Seg::get
+
+/** Every setter at the ends of its field's range (the parameter table's), its off value and
+ * each of its words. */
 std::vector<ParamCase> validEdges() {
-  const double dmin = std::numeric_limits<double>::denorm_min();
-  const double dmax = std::numeric_limits<double>::max();
   std::vector<ParamCase> v;
-  v.push_back({"setNumberOfNeighbours", [](Seg& s) { s.setNumberOfNeighbours(2); },
-               [](const Seg& s) { return s.getNumberOfNeighbours() == 2; }});
-  v.push_back({"setNumberOfNeighbours", [](Seg& s) { s.setNumberOfNeighbours(INT_MAX); },
-               [](const Seg& s) { return s.getNumberOfNeighbours() == INT_MAX; }});
-  for (std::optional<int> n :
-       {std::optional<int>(), std::optional<int>(1), std::optional<int>(INT_MAX)})
-    v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
-                 [n](const Seg& s) { return s.getNumberOfSamples() == n; }});
-  for (float f : {0.0f, 1.0f}) {
-    v.push_back({"setCrossingFraction", [f](Seg& s) { s.setCrossingFraction(f); },
-                 [f](const Seg& s) { return s.getCrossingFraction() == f; }});
-    v.push_back({"setAreaFraction", [f](Seg& s) { s.setAreaFraction(f); },
-                 [f](const Seg& s) { return s.getAreaFraction() == f; }});
-    v.push_back({"setHeightFraction", [f](Seg& s) { s.setHeightFraction(f); },
-                 [f](const Seg& s) { return s.getHeightFraction() == f; }});
-  }
-  for (double x : {dmin, 1e-300, 1e300, dmax}) {
-    v.push_back(
-        {"setBeta", [x](Seg& s) { s.setBeta(x); }, [x](const Seg& s) { return s.getBeta() == x; }});
-    v.push_back({"setAlpha1", [x](Seg& s) { s.setAlpha1(x); },
-                 [x](const Seg& s) { return s.getAlpha1() == x; }});
-    v.push_back({"setAlpha2", [x](Seg& s) { s.setAlpha2(x); },
-                 [x](const Seg& s) { return s.getAlpha2() == x; }});
-  }
-  for (double x : {0.0, dmax})
-    v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
-                 [x](const Seg& s) { return s.getThreshold() == x; }});
-  for (int n : {1, INT_MAX})
-    v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
+  addValid<int>(v, SETTER("k", setNumberOfNeighbours, getNumberOfNeighbours), {2, INT_MAX});
+  addValid<OptD>(v, SETTER("bridge_gap", setBridgeGap, getBridgeGap), {nullopt, kDMin, kDMax});
+  addValid<OptD>(v, SETTER("denoise", setDenoise, getDenoise),
+                 {nullopt, std::nextafter(1.0, 2.0), kDMax});
+  addValid<OptD>(v, SETTER("irregular_sampling", setIrregularSampling, getIrregularSampling),
+                 {nullopt, kDMin, kDMax});
+  addValid<OptI>(v, SETTER("max_points", setMaxPoints, getMaxPoints), {nullopt, 100, INT_MAX});
+  addValid<OptI>(v, SETTER("centrality_samples", setNumberOfSamples, getNumberOfSamples),
+                 {nullopt, 1, INT_MAX});
+  addValid<CentralityMode>(v, SETTER("centrality", setCentralityMode, getCentralityMode),
+                           {CentralityMode::Exact, CentralityMode::Fast});
+  addValid<int>(v, SETTER("starts", setStarts, getStarts), {1, 16});
+  addValid<float>(v, SETTER("crossing_fraction", setCrossingFraction, getCrossingFraction),
+                  {0.0f, 1.0f});
+  addValid<float>(v, SETTER("area_fraction", setAreaFraction, getAreaFraction), {0.0f, 1.0f});
+  addValid<float>(v, SETTER("height_fraction", setHeightFraction, getHeightFraction), {0.0f, 1.0f});
+  addValid<OptD>(v, SETTER("crease_split", setCreaseSplit, getCreaseSplit),
+                 {nullopt, kDMin, kDMax});
+  addValid<bool>(v, SETTER("cad", setCadMode, getCadMode), {true, false});
+  const std::vector<double> positive = {kDMin, 1e-300, 1e300, kDMax}; // for ranges (0, inf)
+  addValid<double>(v, SETTER("beta", setBeta, getBeta), positive);
+  addValid<double>(v, SETTER("alpha1", setAlpha1, getAlpha1), positive);
+  addValid<double>(v, SETTER("alpha2", setAlpha2, getAlpha2), positive);
+  addValid<bool>(v, SETTER("normalize_width", setNormalizeWidth, getNormalizeWidth), {true, false});
+  addValid<Adjacency>(v, SETTER("adjacency", setAdjacency, getAdjacency),
+                      {Adjacency::Saddles, Adjacency::Trees, Adjacency::All});
+  addValid<OptD>(v, SETTER("concavity", setConcavityWeight, getConcavityWeight),
+                 {nullopt, kDMin, kDMax});
+  addValid<OptD>(v, SETTER("flat_elongation", setFlatElongation, getFlatElongation),
+                 {nullopt, kDMin, kDMax});
+  addValid<StoppingRule>(v, SETTER("stopping", setStoppingRule, getStoppingRule),
+                         {StoppingRule::Threshold, StoppingRule::ShortCut, StoppingRule::Count});
+  addValid<double>(v, SETTER("threshold", setThreshold, getThreshold), {0.0, kDMax});
+  for (int n : {1, INT_MAX}) // asking for segments is choosing the count rule
+    v.push_back({"segments", "setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
                  [n](const Seg& s) {
                    return s.getNumberOfSegments() == n &&
-                          s.getStoppingRule() == pcl_ncut_seg::StoppingRule::Count;
+                          s.getStoppingRule() == StoppingRule::Count;
                  }});
-  for (unsigned n : {0u, 1u, 64u, UINT_MAX})
-    v.push_back({"setNumberOfThreads", [n](Seg& s) { s.setNumberOfThreads(n); },
-                 [n](const Seg& s) { return s.getNumberOfThreads() == n; }});
-  for (int n : {1, INT_MAX})
-    v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
-                 [n](const Seg& s) { return s.getMaxSegments() == n; }});
-  for (double x : {dmin, dmax})
-    v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
-                 [x](const Seg& s) { return s.getNeckBound() == x; }});
-  v.push_back(
-      {"setCentralityMode",
-       [](Seg& s) { s.setCentralityMode(pcl_ncut_seg::CentralityMode::Exact); },
-       [](const Seg& s) { return s.getCentralityMode() == pcl_ncut_seg::CentralityMode::Exact; }});
+  addValid<int>(v, SETTER("max_segments", setMaxSegments, getMaxSegments), {1, INT_MAX});
+  addValid<double>(v, SETTER("neck_bound", setNeckBound, getNeckBound), {kDMin, kDMax});
+  addValid<OptD>(v, SETTER("boundary_band", setBoundaryBand, getBoundaryBand),
+                 {nullopt, kDMin, 0.5});
+  addValid<OptD>(v, SETTER("rim_merge", setRimMerge, getRimMerge), {nullopt, kDMin, 180.0});
+  addValid<unsigned>(v, SETTER("threads", setNumberOfThreads, getNumberOfThreads),
+                     {0u, 1u, 64u, UINT_MAX});
   return v;
 }
 
+/** Every setter just past the ends of its field's range, and with values no range holds. */
 std::vector<ParamCase> justPast() {
-  const double dmin = std::numeric_limits<double>::denorm_min();
-  const double dinf = std::numeric_limits<double>::infinity();
-  const double dnan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> positive = {0.0, -0.0, -kDMin, kDInf, kDNaN}; // for ranges (0, inf)
+  const std::vector<OptD> positive_or_off(positive.begin(), positive.end());
+  const std::vector<float> fraction = {std::nextafter(0.0f, -1.0f), std::nextafter(1.0f, 2.0f),
+                                       kNaN, kInf}; // for [0, 1]
   std::vector<ParamCase> v;
-  for (int k : {1, 0, -1, INT_MIN})
-    v.push_back({"setNumberOfNeighbours", [k](Seg& s) { s.setNumberOfNeighbours(k); },
-                 [](const Seg& s) { return s.getNumberOfNeighbours() != 10; }});
+  addBad<int>(v, SETTER("k", setNumberOfNeighbours, getNumberOfNeighbours), {1, 0, -1, INT_MIN});
+  addBad<OptD>(v, SETTER("bridge_gap", setBridgeGap, getBridgeGap), positive_or_off);
+  addBad<OptD>(v, SETTER("denoise", setDenoise, getDenoise), {1.0, 0.0, kDInf, kDNaN});
+  addBad<OptD>(v, SETTER("irregular_sampling", setIrregularSampling, getIrregularSampling),
+               positive_or_off);
+  addBad<OptI>(v, SETTER("max_points", setMaxPoints, getMaxPoints), {99, 0, -1, INT_MIN});
+  addBad<OptI>(v, SETTER("centrality_samples", setNumberOfSamples, getNumberOfSamples),
+               {0, -1, INT_MIN});
+  addBad<CentralityMode>(v, SETTER("centrality", setCentralityMode, getCentralityMode),
+                         {static_cast<CentralityMode>(7)});
+  addBad<int>(v, SETTER("starts", setStarts, getStarts), {0, 17, -1, INT_MIN, INT_MAX});
+  addBad<float>(v, SETTER("crossing_fraction", setCrossingFraction, getCrossingFraction), fraction);
+  addBad<float>(v, SETTER("area_fraction", setAreaFraction, getAreaFraction), fraction);
+  addBad<float>(v, SETTER("height_fraction", setHeightFraction, getHeightFraction), fraction);
+  addBad<OptD>(v, SETTER("crease_split", setCreaseSplit, getCreaseSplit), positive_or_off);
+  addBad<double>(v, SETTER("beta", setBeta, getBeta), positive);
+  addBad<double>(v, SETTER("alpha1", setAlpha1, getAlpha1), positive);
+  addBad<double>(v, SETTER("alpha2", setAlpha2, getAlpha2), positive);
+  addBad<Adjacency>(v, SETTER("adjacency", setAdjacency, getAdjacency),
+                    {static_cast<Adjacency>(7)});
+  addBad<OptD>(v, SETTER("concavity", setConcavityWeight, getConcavityWeight), positive_or_off);
+  addBad<OptD>(v, SETTER("flat_elongation", setFlatElongation, getFlatElongation), positive_or_off);
+  addBad<StoppingRule>(v, SETTER("stopping", setStoppingRule, getStoppingRule),
+                       {static_cast<StoppingRule>(7)});
+  addBad<double>(v, SETTER("threshold", setThreshold, getThreshold), {-kDMin, kDInf, kDNaN});
   for (int n : {0, -1, INT_MIN})
-    v.push_back({"setNumberOfSamples", [n](Seg& s) { s.setNumberOfSamples(n); },
-                 [](const Seg& s) { return s.getNumberOfSamples() != std::nullopt; }});
-  for (float f : {std::nextafter(0.0f, -1.0f), std::nextafter(1.0f, 2.0f), kNaN, kInf}) {
-    v.push_back({"setCrossingFraction", [f](Seg& s) { s.setCrossingFraction(f); },
-                 [](const Seg& s) { return s.getCrossingFraction() != 0.3f; }});
-    v.push_back({"setAreaFraction", [f](Seg& s) { s.setAreaFraction(f); },
-                 [](const Seg& s) { return s.getAreaFraction() != 0.01f; }});
-    v.push_back({"setHeightFraction", [f](Seg& s) { s.setHeightFraction(f); },
-                 [](const Seg& s) { return s.getHeightFraction() != 0.01f; }});
-  }
-  for (double x : {0.0, -0.0, -dmin, dinf, dnan}) {
-    v.push_back({"setBeta", [x](Seg& s) { s.setBeta(x); },
-                 [](const Seg& s) { return s.getBeta() != 2.0; }});
-    v.push_back({"setAlpha1", [x](Seg& s) { s.setAlpha1(x); },
-                 [](const Seg& s) { return s.getAlpha1() != 2.0; }});
-    v.push_back({"setAlpha2", [x](Seg& s) { s.setAlpha2(x); },
-                 [](const Seg& s) { return s.getAlpha2() != 0.5; }});
-  }
-  for (double x : {-dmin, dinf, dnan})
-    v.push_back({"setThreshold", [x](Seg& s) { s.setThreshold(x); },
-                 [](const Seg& s) { return s.getThreshold() != Seg().getThreshold(); }});
-  for (int n : {0, -1, INT_MIN})
-    v.push_back({"setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
+    v.push_back({"segments", "setNumberOfSegments", [n](Seg& s) { s.setNumberOfSegments(n); },
                  [](const Seg& s) {
                    return s.getNumberOfSegments() != Seg().getNumberOfSegments() ||
                           s.getStoppingRule() != Seg().getStoppingRule();
                  }});
-  for (int n : {0, -1, INT_MIN})
-    v.push_back({"setMaxSegments", [n](Seg& s) { s.setMaxSegments(n); },
-                 [](const Seg& s) { return s.getMaxSegments() != Seg().getMaxSegments(); }});
-  for (double x : {0.0, -dmin, dinf, dnan})
-    v.push_back({"setNeckBound", [x](Seg& s) { s.setNeckBound(x); },
-                 [](const Seg& s) { return s.getNeckBound() != Seg().getNeckBound(); }});
-  v.push_back({"setCentralityMode",
-               [](Seg& s) { s.setCentralityMode(static_cast<pcl_ncut_seg::CentralityMode>(7)); },
-               [](const Seg& s) { return s.getCentralityMode() != Seg().getCentralityMode(); }});
+  addBad<int>(v, SETTER("max_segments", setMaxSegments, getMaxSegments), {0, -1, INT_MIN});
+  addBad<double>(v, SETTER("neck_bound", setNeckBound, getNeckBound), {0.0, -kDMin, kDInf, kDNaN});
+  addBad<OptD>(v, SETTER("boundary_band", setBoundaryBand, getBoundaryBand),
+               {0.0, -kDMin, std::nextafter(0.5, 1.0), kDInf, kDNaN});
+  addBad<OptD>(v, SETTER("rim_merge", setRimMerge, getRimMerge),
+               {0.0, -kDMin, std::nextafter(180.0, 181.0), kDInf, kDNaN});
   return v;
+}
+
+#undef SETTER
+
+/// Rows the PCL class has no setter of their own for: setParameters() sets them (and the
+/// table-driven tests below cover them through it).
+const std::map<std::string, std::string> kOnlyThroughSetParameters = {
+    {"single_view", "no setter in the PCL class: the open-view test is on unless setParameters "
+                    "turns it off"},
+    {"ridge_angle", "no setter in the PCL class: CAD mode's angle is set with setParameters"}};
+
+/// Rows whose setter takes a type with no value outside the range.
+const std::map<std::string, std::string> kNoValuePastTheRange = {
+    {"cad", "setCadMode takes a bool"},
+    {"normalize_width", "setNormalizeWidth takes a bool"},
+    {"threads", "setNumberOfThreads takes an unsigned, and every unsigned is valid"}};
+
+/// The table's rows that neither the cases nor the lists name.
+std::vector<std::string> rowsLeftOut(const std::vector<ParamCase>& cases,
+                                     const std::map<std::string, std::string>& listed) {
+  std::set<std::string> covered;
+  for (const ParamCase& c : cases)
+    covered.insert(c.row);
+  for (const auto& entry : listed)
+    covered.insert(entry.first);
+  std::vector<std::string> left;
+  for (const ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    if (!covered.count(row.name))
+      left.push_back(row.name);
+  return left;
 }
 
 } // namespace
 
+TEST(Robustness, EveryRowOfTheTableHasSetterCasesOrIsListed) {
+  EXPECT_EQ(rowsLeftOut(validEdges(), kOnlyThroughSetParameters), std::vector<std::string>{})
+      << "add the setter's cases to validEdges(), or the row to kOnlyThroughSetParameters";
+  std::map<std::string, std::string> no_past = kOnlyThroughSetParameters;
+  no_past.insert(kNoValuePastTheRange.begin(), kNoValuePastTheRange.end());
+  EXPECT_EQ(rowsLeftOut(justPast(), no_past), std::vector<std::string>{})
+      << "add the setter's cases to justPast(), or the row to kNoValuePastTheRange";
+  for (const ParamCase& c : validEdges())
+    EXPECT_NE(pcl_ncut_seg::findParameter(c.row), nullptr) << c.setter << ": no row " << c.row;
+  for (const auto& [name, why] : no_past)
+    EXPECT_NE(pcl_ncut_seg::findParameter(name), nullptr) << "listed, but no row: " << name;
+}
+
 TEST(Robustness, ParametersAtTheEdgesOfTheirRangeAreAcceptedAndWork) {
-  Cloud::Ptr c = makeDumbbell(800, 4).cloud;
+  Cloud::Ptr c = makeDumbbell(500, 4).cloud; // few points: k = INT_MAX joins every pair
   for (const ParamCase& p : validEdges()) {
     Seg seg;
     seg.setInputCloud(c);
@@ -176,6 +256,89 @@ TEST(Robustness, ParametersJustPastTheirRangeAreRejected) {
     EXPECT_NE(err.find(std::string("[pcl::SupernodeNCutSegmentation::") + p.setter + "]"),
               std::string::npos)
         << err;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every row of the parameter table through setParameter() and setParameters(), with values
+// generated from the table (support/parameter_values.h): a new row is covered as it is added.
+
+namespace {
+
+/** Default parameters with the row set to value by setParameter(), in CAD mode for a row that
+ * only CAD mode reads. */
+pcl_ncut_seg::Parameters withValue(const ParameterInfo& row, const std::string& value) {
+  pcl_ncut_seg::Parameters p;
+  p.cad.enabled = row.stage == pcl_ncut_seg::Stage::Cad;
+  std::string why;
+  EXPECT_TRUE(pcl_ncut_seg::setParameter(p, row.name, value, &why)) << why;
+  return p;
+}
+
+/** Every row's value as text. */
+std::vector<std::string> allValues(const pcl_ncut_seg::Parameters& p) {
+  std::vector<std::string> values;
+  for (const ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    values.push_back(row.get(p));
+  return values;
+}
+
+/** A depth camera's view of a disc with a bump, every third pixel (about 500 points): the
+ * open-view stages act on it, not on a whole surface. */
+Cloud::Ptr smallView() {
+  const Cloud::Ptr full = discView(11, 0.02f);
+  Cloud::Ptr view(new Cloud(full->width / 3, full->height / 3));
+  for (std::uint32_t row = 0; row < view->height; ++row)
+    for (std::uint32_t col = 0; col < view->width; ++col)
+      (*view)(col, row) = (*full)(3 * col, 3 * row);
+  view->is_dense = false;
+  return view;
+}
+
+} // namespace
+
+TEST(Robustness, EveryRowAtTheEdgesOfItsRangeWorksThroughSetParameters) {
+  const Cloud::Ptr whole = makeDumbbell(500, 4).cloud, view = smallView();
+  for (const ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    for (const std::string& value : valuesAtTheEdges(row)) {
+      SCOPED_TRACE(row.name + " " + value);
+      const pcl_ncut_seg::Parameters p = withValue(row, value);
+      for (const Cloud::Ptr& cloud : {whole, view}) {
+        Seg seg;
+        seg.setInputCloud(cloud);
+        ::testing::internal::CaptureStderr();
+        const bool taken = seg.setParameters(p);
+        const std::string err = ::testing::internal::GetCapturedStderr();
+        ASSERT_TRUE(taken) << err;
+        EXPECT_EQ(allValues(seg.getParameters()), allValues(p));
+        const Extracted r = extractCapturing(seg);
+        ASSERT_FALSE(r.segments.empty()) << r.err;
+        expectPartition(r.segments, *cloud);
+      }
+    }
+}
+
+TEST(Robustness, EveryRowJustPastItsRangeIsRejectedBySetParameter) {
+  const std::vector<std::string> defaults = allValues(pcl_ncut_seg::Parameters());
+  for (const ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    for (const std::string& value : valuesJustPast(row)) {
+      SCOPED_TRACE(row.name + " " + value);
+      pcl_ncut_seg::Parameters p;
+      std::string why;
+      EXPECT_FALSE(pcl_ncut_seg::setParameter(p, row.name, value, &why));
+      EXPECT_EQ(why.rfind(row.name + " must be ", 0), 0u) << why;
+      EXPECT_EQ(allValues(p), defaults) << "a rejected value changed the parameters";
+    }
+}
+
+TEST(Robustness, TheSmallViewIsAViewAndTheDumbbellIsNot) {
+  // The open-view rows above act only on a view: the test relies on these two clouds.
+  for (const bool is_view : {true, false}) {
+    Seg seg;
+    seg.setInputCloud(is_view ? smallView() : makeDumbbell(500, 4).cloud);
+    Segments out;
+    seg.extract(out);
+    EXPECT_EQ(seg.getViewTest().view, is_view);
   }
 }
 

@@ -2,7 +2,8 @@
  * The Princeton Segmentation Benchmark's development split (shared data): hands, four-legged
  * animals and a human, one point per face at its centroid, segmented into the benchmark's
  * number of segments and scored as the benchmark does (1 - Rand index per face, averaged over
- * every human segmentation of the model). Skipped when the shared data is absent.
+ * every human segmentation of the model), against one segment, k-means and the paper's pipeline
+ * with the same count. Skipped when the shared data is absent.
  *
  * First, the mesh reading and sampling these tests (and the tools) rely on.
  */
@@ -175,7 +176,7 @@ TEST(BundledData, ModelsAreReproducedByTheirDocumentedCommands) {
     const fs::path source =
         fs::path(PCL_NCUT_SEG_SHARED_DATA) / "models" / ("cgal-" + name + ".off");
     if (!fs::exists(source))
-      GTEST_SKIP() << "shared data not found at " << source;
+      GTEST_SKIP() << "shared data absent: no " << source;
     pcl_ncut_seg::TriangleMesh mesh;
     ASSERT_TRUE(pcl_ncut_seg::readOff(source.string(), mesh));
     const std::vector<float> xyz = pcl_ncut_seg::sampleSurface(mesh, 8000, 1);
@@ -194,14 +195,19 @@ TEST(BundledData, ModelsAreReproducedByTheirDocumentedCommands) {
 // ---------------------------------------------------------------------------------------------
 // The benchmark
 
-/** \brief What one model scored. */
+/** \brief What one model scored: 1 - Rand index per face, averaged over the human
+ * segmentations, for the defaults and for what they are measured against. */
 struct ModelResult {
   int requested = 0;        ///< the benchmark's segment count for the model
-  std::size_t segments = 0; ///< segments produced
-  double one_minus_ri = 1;  ///< 1 - Rand index, averaged over the human segmentations
-  double k_means = 1;       ///< the same for k-means on the points with the same count
+  std::size_t segments = 0; ///< segments produced by the defaults
+  double one_minus_ri = 1;  ///< the defaults, with the benchmark's count
+  bool has_paper = false;   ///< the next two measured
+  std::size_t paper_segments = 0;
+  double paper = 1;       ///< the paper's pipeline (Parameters::paper()) with the same count
+  double one_segment = 1; ///< every face in one segment
+  double k_means = 1;     ///< k-means on the points with the same count
   std::size_t num_human = 0;
-  bool partition = false; ///< every point in exactly one segment
+  bool partition = false; ///< every point in exactly one segment (the defaults)
 };
 
 /** \brief Line `id` (from 1) of nSeg-ByModel.txt, or 0 if missing. */
@@ -214,78 +220,122 @@ int benchmarkSegmentCount(int id) {
   return value;
 }
 
-/** \brief Segment model `id` and score it; memoised, for the per-model and summary tests.
- * Fails the current test (and returns nullptr) on unreadable data. */
-const ModelResult* evaluate(int id) {
-  static std::map<int, ModelResult> cache;
-  const auto cached = cache.find(id);
-  if (cached != cache.end())
-    return &cached->second;
+/** \brief Every human segmentation of model `id`, in a fixed order, each one label per face;
+ * empty, with the test failed, when one is missing or unreadable. */
+std::vector<std::vector<int>> humanSegmentations(int id, std::size_t faces) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(kPsbDir / "seg" / std::to_string(id)))
+    if (entry.path().extension() == ".seg")
+      files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  std::vector<std::vector<int>> humans;
+  for (const auto& file : files) {
+    humans.emplace_back();
+    if (!pcl_ncut_seg::readSeg(file.string(), humans.back()) || humans.back().size() != faces) {
+      ADD_FAILURE() << file << ": unreadable or not one label per face";
+      return {};
+    }
+  }
+  if (humans.empty())
+    ADD_FAILURE() << "no human segmentations for model " << id;
+  return humans;
+}
 
-  const std::string name = std::to_string(id);
+/** \brief 1 - Rand index of labels, averaged over the human segmentations. */
+double meanError(const std::vector<int>& labels, const std::vector<std::vector<int>>& humans) {
+  double sum = 0;
+  for (const std::vector<int>& human : humans)
+    sum += 1.0 - pcl_ncut_seg::test::randIndex(labels, human);
+  return sum / static_cast<double>(humans.size());
+}
+
+/** \brief The segments of cloud with params, asking for `count` segments. */
+std::vector<pcl::PointIndices> segmentInto(const Cloud::Ptr& cloud,
+                                           const pcl_ncut_seg::Parameters& params, int count) {
+  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
+  seg.setInputCloud(cloud);
+  EXPECT_TRUE(seg.setParameters(params));
+  seg.setNumberOfSegments(count);
+  std::vector<pcl::PointIndices> segments;
+  seg.extract(segments);
+  return segments;
+}
+
+/** \brief Every point of the cloud in exactly one segment. */
+bool isPartition(const std::vector<pcl::PointIndices>& segments, std::size_t n) {
+  std::vector<int> count(n, 0);
+  for (const auto& segment : segments)
+    for (const auto i : segment.indices)
+      if (i >= 0 && static_cast<std::size_t>(i) < n)
+        ++count[i];
+  return std::all_of(count.begin(), count.end(), [](int c) { return c == 1; });
+}
+
+/** \brief Model `id`'s faces, one point at each centroid (xyz and as a cloud). */
+bool readModel(int id, std::vector<float>& xyz, Cloud::Ptr& cloud) {
   pcl_ncut_seg::TriangleMesh mesh;
   std::string error;
-  if (!pcl_ncut_seg::readOff((kPsbDir / "off" / (name + ".off")).string(), mesh, &error)) {
-    ADD_FAILURE() << error;
-    return nullptr;
+  const fs::path path = kPsbDir / "off" / (std::to_string(id) + ".off");
+  if (!pcl_ncut_seg::readOff(path.string(), mesh, &error)) {
+    ADD_FAILURE() << path << ": " << error;
+    return false;
   }
+  xyz = pcl_ncut_seg::faceCentroids(mesh);
+  cloud.reset(new Cloud);
+  cloud->resize(xyz.size() / 3);
+  for (std::size_t i = 0; i < cloud->size(); ++i)
+    (*cloud)[i] = pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  return true;
+}
+
+void printResult(int id, std::size_t points, const ModelResult& r) {
+  std::cout << "[ measured ] model " << id << ": " << points << " points, " << r.segments << " of "
+            << r.requested << " segments, 1 - RI " << r.one_minus_ri << " over " << r.num_human
+            << " human segmentations; one segment " << r.one_segment << ", k-means " << r.k_means;
+  if (r.has_paper)
+    std::cout << ", -paper " << r.paper << " (" << r.paper_segments << " segments)";
+  std::cout << std::endl;
+}
+
+/** \brief Segment model `id` with the defaults (and with -paper when asked), and score them
+ * and the baselines; memoised, for the per-model and summary tests. Fails the current test
+ * (and returns nullptr) on unreadable data. */
+const ModelResult* evaluate(int id, bool with_paper) {
+  static std::map<int, ModelResult> cache;
+  const auto cached = cache.find(id);
+  if (cached != cache.end() && (cached->second.has_paper || !with_paper))
+    return &cached->second;
+
+  std::vector<float> xyz;
+  Cloud::Ptr cloud;
+  if (!readModel(id, xyz, cloud))
+    return nullptr;
   ModelResult result;
   result.requested = benchmarkSegmentCount(id);
   if (result.requested <= 0) {
     ADD_FAILURE() << "no segment count for model " << id << " in nSeg-ByModel.txt";
     return nullptr;
   }
-
-  const std::vector<float> xyz = pcl_ncut_seg::faceCentroids(mesh);
-  Cloud::Ptr cloud(new Cloud);
-  cloud->resize(xyz.size() / 3);
-  for (std::size_t i = 0; i < cloud->size(); ++i)
-    (*cloud)[i] = pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-
-  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg;
-  seg.setInputCloud(cloud);
-  seg.setNumberOfSegments(result.requested);
-  std::vector<pcl::PointIndices> segments;
-  seg.extract(segments);
-  result.segments = segments.size();
-
-  std::vector<int> count(cloud->size(), 0);
-  for (const auto& segment : segments)
-    for (const auto i : segment.indices)
-      if (i >= 0 && static_cast<std::size_t>(i) < count.size())
-        ++count[i];
-  result.partition = std::all_of(count.begin(), count.end(), [](int c) { return c == 1; });
-  const std::vector<int> labels = pcl_ncut_seg::test::segmentsToLabels(segments, cloud->size());
-  const std::vector<int> k_means = pcl_ncut_seg::test::kMeansLabels(xyz, result.requested);
-
-  // Every human segmentation of the model, in a fixed order.
-  std::vector<fs::path> seg_files;
-  for (const auto& entry : fs::directory_iterator(kPsbDir / "seg" / name))
-    if (entry.path().extension() == ".seg")
-      seg_files.push_back(entry.path());
-  std::sort(seg_files.begin(), seg_files.end());
-  if (seg_files.empty()) {
-    ADD_FAILURE() << "no human segmentations for model " << id;
+  const std::vector<std::vector<int>> humans = humanSegmentations(id, cloud->size());
+  if (humans.empty())
     return nullptr;
+  result.num_human = humans.size();
+
+  using pcl_ncut_seg::test::segmentsToLabels;
+  const auto ours = segmentInto(cloud, pcl_ncut_seg::Parameters(), result.requested);
+  result.segments = ours.size();
+  result.partition = isPartition(ours, cloud->size());
+  result.one_minus_ri = meanError(segmentsToLabels(ours, cloud->size()), humans);
+  result.one_segment = meanError(std::vector<int>(cloud->size(), 0), humans);
+  result.k_means = meanError(pcl_ncut_seg::test::kMeansLabels(xyz, result.requested), humans);
+  if (with_paper) {
+    const auto paper = segmentInto(cloud, pcl_ncut_seg::Parameters::paper(), result.requested);
+    result.has_paper = true;
+    result.paper_segments = paper.size();
+    result.paper = meanError(segmentsToLabels(paper, cloud->size()), humans);
   }
-  double sum = 0, sum_k_means = 0;
-  for (const auto& file : seg_files) {
-    std::vector<int> human;
-    if (!pcl_ncut_seg::readSeg(file.string(), human) || human.size() != labels.size()) {
-      ADD_FAILURE() << file << ": unreadable or not one label per face";
-      return nullptr;
-    }
-    sum += 1.0 - pcl_ncut_seg::test::randIndex(labels, human);
-    sum_k_means += 1.0 - pcl_ncut_seg::test::randIndex(k_means, human);
-  }
-  result.num_human = seg_files.size();
-  result.one_minus_ri = sum / seg_files.size();
-  result.k_means = sum_k_means / seg_files.size();
-  std::cout << "[ measured ] model " << id << ": " << cloud->size() << " points, "
-            << result.segments << " of " << result.requested << " segments, 1 - RI "
-            << result.one_minus_ri << " over " << result.num_human
-            << " human segmentations (k-means " << result.k_means << ")" << std::endl;
-  return &cache.emplace(id, result).first->second;
+  printResult(id, cloud->size(), result);
+  return &(cache[id] = result);
 }
 
 bool haveData() {
@@ -296,20 +346,27 @@ class PsbModel : public ::testing::TestWithParam<int> {};
 
 TEST_P(PsbModel, SegmentsIntoTheBenchmarkCount) {
   if (!haveData())
-    GTEST_SKIP() << "shared data not found at " << kPsbDir;
-  const ModelResult* result = evaluate(GetParam());
+    GTEST_SKIP() << "shared data absent: no " << kPsbDir;
+  const int id = GetParam();
+  const ModelResult* result = evaluate(id, true);
   ASSERT_NE(result, nullptr);
   RecordProperty("one_minus_rand_index", std::to_string(result->one_minus_ri));
+  RecordProperty("paper_one_minus_rand_index", std::to_string(result->paper));
   RecordProperty("segments", std::to_string(result->segments));
   EXPECT_TRUE(result->partition) << "a point is in no segment or in several";
   // A hand has at least as many parts as the benchmark's count (five fingers, palm, wrist):
   // all must be found. Elsewhere the count (15 for the human and animal 381, which people cut
   // into limb segments) may exceed the supernodes, and fewer segments come out.
-  const bool hand = GetParam() >= 181 && GetParam() <= 200;
+  const bool hand = id >= 181 && id <= 200;
   if (hand)
     EXPECT_EQ(result->segments, static_cast<std::size_t>(result->requested));
   else
     EXPECT_LE(result->segments, static_cast<std::size_t>(result->requested));
+  // Its quality: closer to the people's segmentations than no segmentation at all, which a
+  // segmenter that gives up (one segment) would not be. -paper and k-means with the same count
+  // are printed beside it: the defaults do not beat them on every model (a limitation that
+  // results/report.md measures on the whole split), so they are not a bar here.
+  EXPECT_LT(result->one_minus_ri, result->one_segment);
 }
 
 // 1: human; 181-183: hands; 381-383: four-legged animals.
@@ -317,7 +374,7 @@ INSTANTIATE_TEST_SUITE_P(Psb, PsbModel, ::testing::Values(1, 181, 182, 183, 381,
 
 TEST(Psb, LimbCategoriesFollowThePartsBetterThanKMeans) {
   if (!haveData())
-    GTEST_SKIP() << "shared data not found at " << kPsbDir;
+    GTEST_SKIP() << "shared data absent: no " << kPsbDir;
   // The goal on these hands and four-legged animals is a mean 1 - Rand index of 0.2 or less.
   // It is not reached: the four-legged animals' heads and tails leak into the body with no
   // saddle between them (README, "Known limitations"); pcl_ncut_seg_bench_psb --limbs prints
@@ -328,7 +385,7 @@ TEST(Psb, LimbCategoriesFollowThePartsBetterThanKMeans) {
   double sum = 0, sum_k_means = 0;
   int models = 0;
   for (const int id : {181, 182, 183, 381, 382, 383}) {
-    const ModelResult* result = evaluate(id);
+    const ModelResult* result = evaluate(id, false);
     ASSERT_NE(result, nullptr);
     sum += result->one_minus_ri;
     sum_k_means += result->k_means;

@@ -23,6 +23,7 @@
 #include <iostream>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -39,17 +40,26 @@ CsrGraph knnGraph(const std::vector<float>& xyz) {
 }
 
 /// Real surfaces: the bundled hand (8000 points, in file order), and 40000 samples of the
-/// horse mesh from the shared data when it is present.
+/// horse mesh from the shared data when it is present. A file present but unreadable fails the
+/// test.
 std::vector<std::vector<float>> realClouds() {
   std::vector<std::vector<float>> clouds;
+  const std::string hand_path = std::string(PCL_NCUT_SEG_DATA_DIR) + "/hand.pcd";
   Cloud hand;
-  if (pcl::io::loadPCDFile(std::string(PCL_NCUT_SEG_DATA_DIR) + "/hand.pcd", hand) == 0)
+  if (pcl::io::loadPCDFile(hand_path, hand) == 0)
     clouds.push_back(test::xyzOf(hand));
+  else
+    ADD_FAILURE() << "cannot read the bundled " << hand_path;
   const std::filesystem::path horse =
       std::filesystem::path(PCL_NCUT_SEG_SHARED_DATA) / "models" / "horse.off";
   TriangleMesh mesh;
-  if (std::filesystem::exists(horse) && readOff(horse.string(), mesh))
+  std::string error;
+  if (!std::filesystem::exists(horse))
+    std::cout << "[ skipped  ] shared data absent: no " << horse << std::endl;
+  else if (readOff(horse.string(), mesh, &error))
     clouds.push_back(sampleSurface(mesh, 40000, 3));
+  else
+    ADD_FAILURE() << horse << ": " << error;
   return clouds;
 }
 

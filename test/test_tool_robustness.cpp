@@ -6,8 +6,10 @@
  * empty or all-NaN cloud, bad option values); this file covers degenerate clouds and the edges
  * of every option's range.
  */
+#include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/metrics.h>
+#include <support/parameter_values.h>
 #include <support/shapes.h>
 #include <support/text_files.h>
 
@@ -102,14 +104,16 @@ protected:
     return labels;
   }
 
-  /** The tool fails cleanly: non-zero exit, one line on stderr, no new file. */
-  void expectCleanFailure(const std::string& args) {
+  /** The tool fails cleanly: non-zero exit, one line on stderr (holding mention), no new
+   * file. */
+  void expectCleanFailure(const std::string& args, const std::string& mention = "") {
     SCOPED_TRACE("pcl_ncut_seg " + args);
     const std::set<std::string> before = listDir(dir_);
     const Result r = run(args);
     EXPECT_NE(r.status, 0);
     EXPECT_NE(r.status, -1) << "the tool crashed";
     EXPECT_EQ(lines(r.err).size(), 1u) << r.err;
+    EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
     EXPECT_EQ(listDir(dir_), before) << "the run left files behind";
   }
 
@@ -237,123 +241,46 @@ TEST_F(ToolRobustness, ScaledModelsSegmentTheSame) {
   }
 }
 
+/** The tool's arguments that give a row this value: "-name value", or a switch alone when on
+ * (empty when off, its default). A row that only CAD mode reads gets -cad as well. */
+std::string optionFor(const pcl_ncut_seg::ParameterInfo& row, const std::string& value) {
+  if (row.kind == pcl_ncut_seg::ValueKind::Switch)
+    return value == "on" ? "-" + row.name : "";
+  const std::string mode = row.stage == pcl_ncut_seg::Stage::Cad ? "-cad " : "";
+  return mode + "-" + row.name + " " + value;
+}
+
 TEST_F(ToolRobustness, EveryOptionAtTheEdgesOfItsRange) {
-  const Cloud::Ptr shape = makeDumbbell(700, 3).cloud;
-  // Every parameter of the table (pcl_ncut_seg::parameterTable()) at both ends of its range,
-  // its off word and each of its choices.
-  for (const char* options : {"-k 2",
-                              "-k 2147483647",
-                              "-bridge_gap off",
-                              "-bridge_gap 1e-300",
-                              "-bridge_gap 1e300",
-                              "-centrality_samples auto",
-                              "-centrality_samples 1",
-                              "-centrality_samples 2147483647",
-                              "-centrality exact",
-                              "-centrality fast",
-                              "-exact",
-                              "-crossing_fraction 0",
-                              "-crossing_fraction 1",
-                              "-area_fraction 0",
-                              "-area_fraction 1",
-                              "-height_fraction 0",
-                              "-height_fraction 1",
-                              "-crease_split off",
-                              "-crease_split 1e-300",
-                              "-crease_split 1e300",
-                              "-cad",
-                              "-cad -ridge_angle 1e-30",
-                              "-cad -ridge_angle 90",
-                              "-beta 1e-300",
-                              "-beta 1e300",
-                              "-alpha1 1e-300",
-                              "-alpha1 1e300",
-                              "-alpha2 1e-300",
-                              "-alpha2 1e300",
-                              "-normalize_width on",
-                              "-normalize_width off",
-                              "-adjacency saddles",
-                              "-adjacency trees",
-                              "-adjacency all",
-                              "-concavity off",
-                              "-concavity 1e-300",
-                              "-concavity 1e300",
-                              "-flat_elongation off",
-                              "-flat_elongation 1e-300",
-                              "-flat_elongation 1e300",
-                              "-stopping threshold",
-                              "-stopping short_cut",
-                              "-stopping count",
-                              "-threshold 0",
-                              "-threshold 1e300",
-                              "-segments 1",
-                              "-segments 2147483647",
-                              "-max_segments 1",
-                              "-max_segments 2147483647",
-                              "-neck_bound 1e-300",
-                              "-neck_bound 1e300",
-                              "-boundary_band off",
-                              "-boundary_band 1e-300",
-                              "-boundary_band 0.5",
-                              "-threads 0",
-                              "-threads 1",
-                              "-threads 2147483647",
-                              "-paper"}) {
-    SCOPED_TRACE(options);
-    segment(*shape, options);
+  // Few points: -k 2147483647 joins every pair of them.
+  const Cloud::Ptr shape = makeDumbbell(400, 3).cloud;
+  // Every row of the parameter table at both ends of its range, its off word, each of its
+  // choices, on and off (support/parameter_values.h); each shorthand; -paper.
+  std::vector<std::string> options = {"-paper"};
+  for (const pcl_ncut_seg::Shorthand& s : pcl_ncut_seg::parameterShorthands())
+    options.push_back("-" + s.name);
+  for (const pcl_ncut_seg::ParameterInfo& row : pcl_ncut_seg::parameterTable())
+    for (const std::string& value : valuesAtTheEdges(row))
+      if (!optionFor(row, value).empty())
+        options.push_back(optionFor(row, value));
+  for (const std::string& option : options) {
+    SCOPED_TRACE(option);
+    segment(*shape, option);
   }
 }
 
 TEST_F(ToolRobustness, EveryOptionJustPastItsRangeFailsCleanly) {
   save("in.pcd", *makeDumbbell(300, 4).cloud);
-  for (const char* options : {"-k 1",
-                              "-k 2147483648",
-                              "-centrality_samples 0",
-                              "-centrality_samples 2147483648",
-                              "-centrality slow",
-                              "-crossing_fraction -1e-30",
-                              "-crossing_fraction 1.0000001",
-                              "-area_fraction -1e-30",
-                              "-area_fraction 1.0000001",
-                              "-height_fraction -1e-30",
-                              "-height_fraction 1.0000001",
-                              "-crease_split 0",
-                              "-crease_split 1e400",
-                              "-ridge_angle 0",
-                              "-ridge_angle 90.000001",
-                              "-beta 0",
-                              "-beta -1e-300",
-                              "-beta 1e400",
-                              "-alpha1 0",
-                              "-alpha1 -1e-300",
-                              "-alpha1 1e400",
-                              "-alpha2 0",
-                              "-alpha2 -1e-300",
-                              "-alpha2 1e400",
-                              "-normalize_width 1",
-                              "-adjacency none",
-                              "-concavity 0",
-                              "-concavity 1e400",
-                              "-flat_elongation 0",
-                              "-flat_elongation 1e400",
-                              "-stopping gap",
-                              "-threshold -1e-300",
-                              "-threshold 1e400",
-                              "-segments 0",
-                              "-segments 2147483648",
-                              "-max_segments 0",
-                              "-max_segments 2147483648",
-                              "-neck_bound 0",
-                              "-neck_bound -1e-300",
-                              "-boundary_band 0",
-                              "-boundary_band 0.5000001",
-                              "-bridge_gap 0",
-                              "-bridge_gap 1e400",
-                              "-threads -1",
-                              "-threads 2147483648",
-                              "-k 10.0",
-                              "-k 0x10",
-                              "-beta 0x1p3"})
+  for (const pcl_ncut_seg::ParameterInfo& row : pcl_ncut_seg::parameterTable()) {
+    if (row.kind == pcl_ncut_seg::ValueKind::Switch)
+      continue; // it takes no value
+    std::vector<std::string> values = valuesJustPast(row);
+    if (row.kind == pcl_ncut_seg::ValueKind::Integer && !std::isfinite(row.hi))
+      values.push_back("2147483648"); // the tool reads an int
+    for (const std::string& value : values)
+      expectCleanFailure("in.pcd out.pcd -" + row.name + " " + value, "for -" + row.name + ":");
+  }
+  // Numbers written other than plainly.
+  for (const char* options : {"-k 10.0", "-k 0x10", "-beta 0x1p3"})
     expectCleanFailure(std::string("in.pcd out.pcd ") + options);
 }
 
