@@ -6,6 +6,7 @@
 #include <pcl_conversions/pcl_conversions.h>
 #include <sensor_msgs/PointField.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -50,9 +51,13 @@ std::string checkCloud(const sensor_msgs::PointCloud2& cloud) {
     if (!field)
       return std::string("the cloud has no field ") + axis +
              " (its fields: " + (names.empty() ? "none" : names) + ")";
+    // In 64 bits: an offset near 2^32 must not wrap around into the point.
     if (field->datatype != sensor_msgs::PointField::FLOAT32 || field->count < 1 ||
-        field->offset + 4u > cloud.point_step)
-      return std::string("the cloud's field ") + axis + " is not one FLOAT32 within a point";
+        std::uint64_t{field->offset} + 4 > cloud.point_step)
+      return std::string("the cloud's field ") + axis + " is not one FLOAT32 within a point" +
+             " (datatype " + std::to_string(field->datatype) + ", count " +
+             std::to_string(field->count) + ", offset " + std::to_string(field->offset) +
+             ", point_step " + std::to_string(cloud.point_step) + ")";
   }
   return "";
 }
@@ -73,32 +78,15 @@ bool CloudSegmenter::setParameters(const pcl_ncut_seg::Parameters& params, std::
 
 bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
                              std::string* why) {
-  const std::string bad = checkCloud(cloud);
+  std::string bad = checkCloud(cloud);
+  auto points = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  if (bad.empty()) {
+    pcl::fromROSMsg(cloud, *points);
+    bad = checkPoints(*points, indices);
+  }
   if (!bad.empty()) {
     if (why)
       *why = bad;
-    return false;
-  }
-  auto points = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  pcl::fromROSMsg(cloud, *points);
-  std::size_t finite = 0;
-  if (indices) {
-    for (int i : *indices) {
-      if (i < 0 || static_cast<std::size_t>(i) >= points->size()) {
-        if (why)
-          *why = "index " + std::to_string(i) + " is outside the cloud of " +
-                 std::to_string(points->size()) + " points";
-        return false;
-      }
-      finite += pcl::isFinite((*points)[i]);
-    }
-  } else {
-    for (const pcl::PointXYZ& p : *points)
-      finite += pcl::isFinite(p);
-  }
-  if (finite == 0) {
-    if (why)
-      *why = std::string("the cloud has no finite point") + (indices ? " within the indices" : "");
     return false;
   }
   cloud_ = points;
@@ -109,6 +97,42 @@ bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::v
   else
     seg_.setIndices(pcl::IndicesPtr());
   return run(why);
+}
+
+std::string CloudSegmenter::checkPoints(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                        const std::vector<int>* indices) const {
+  if (indices)
+    for (int i : *indices)
+      if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+        return "index " + std::to_string(i) + " is outside the cloud of " +
+               std::to_string(points.size()) + " points";
+  // A kNN graph of k needs k + 1 distinct points; fewer is a crop gone wrong, not an object.
+  const std::size_t needed = static_cast<std::size_t>(seg_.getParameters().graph.k) + 1;
+  std::vector<Eigen::Vector3f> distinct; // the first `needed` of them
+  std::size_t finite = 0;
+  const std::size_t n = indices ? indices->size() : points.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t i = indices ? static_cast<std::size_t>((*indices)[j]) : j;
+    if (!pcl::isFinite(points[i]))
+      continue;
+    ++finite;
+    const Eigen::Vector3f p = points[i].getVector3fMap();
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return "point " + std::to_string(i) + " has a coordinate of " +
+             pcl_ncut_seg::formatNumber(p.cwiseAbs().maxCoeff()) + ", beyond +-" +
+             pcl_ncut_seg::formatNumber(kMaxCoordinate);
+    if (distinct.size() < needed &&
+        std::find(distinct.begin(), distinct.end(), p) == distinct.end())
+      distinct.push_back(p);
+  }
+  const char* within = indices ? " within the indices" : "";
+  if (finite == 0)
+    return std::string("the cloud has no finite point") + within;
+  if (distinct.size() < needed)
+    return "the cloud has " + std::to_string(distinct.size()) + " distinct finite point" +
+           (distinct.size() == 1 ? "" : "s") + within + " (of " + std::to_string(finite) +
+           " finite), fewer than k + 1 = " + std::to_string(needed);
+  return "";
 }
 
 bool CloudSegmenter::recut(std::string* why) {

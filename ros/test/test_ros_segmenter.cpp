@@ -315,6 +315,46 @@ TEST(RosSegmenter, BadCloudsAreRejectedAndTheKeptOneStays) {
   EXPECT_TRUE(seg.recut(&why)) << why;
 }
 
+// What a robot's stream hands over besides objects: too few distinct points, coordinates no
+// sensor gives, layouts that do not hold their points.
+TEST(RosSegmenter, DegenerateAndMalformedCloudsSayWhy) {
+  const auto shape = pcl_ncut_seg::test::makeDumbbell(800, 3);
+  CloudSegmenter seg;
+  std::string why;
+  const auto rejects = [&](const sensor_msgs::PointCloud2& msg, const std::string& words) {
+    why.clear();
+    EXPECT_FALSE(seg.segment(msg, nullptr, &why)) << words;
+    EXPECT_NE(why.find(words), std::string::npos) << why;
+  };
+  pcl::PointCloud<pcl::PointXYZ> few;
+  for (int n = 1; n <= 3; ++n) {
+    few.push_back((*shape.cloud)[n]);
+    rejects(toMsg(few), "the cloud has " + std::to_string(n) + " distinct finite point");
+  }
+  pcl::PointCloud<pcl::PointXYZ> copies; // 10 distinct points: one short of k + 1
+  for (int i = 0; i < 500; ++i)
+    copies.push_back((*shape.cloud)[i % 10]);
+  rejects(toMsg(copies), "10 distinct finite points (of 500 finite), fewer than k + 1 = 11");
+  copies.push_back((*shape.cloud)[10]);
+  EXPECT_TRUE(seg.segment(toMsg(copies), nullptr, &why)) << why;
+
+  pcl::PointCloud<pcl::PointXYZ> huge = *shape.cloud;
+  huge[5].z = -1e30f;
+  rejects(toMsg(huge), "point 5 has a coordinate of 1e+30, beyond +-1000000");
+
+  sensor_msgs::PointCloud2 wrapped = toMsg(*shape.cloud); // offset + 4 wraps round 2^32
+  wrapped.fields[0].offset = 0xfffffffeu;
+  rejects(wrapped, "field x is not one FLOAT32 within a point");
+  sensor_msgs::PointCloud2 doubles = toMsg(*shape.cloud);
+  doubles.fields[2].datatype = sensor_msgs::PointField::FLOAT64;
+  rejects(doubles, "field z is not one FLOAT32 within a point (datatype 8");
+  sensor_msgs::PointCloud2 rows = toMsg(*shape.cloud);
+  rows.height = 20;
+  rows.width = 40;
+  rows.row_step = rows.point_step * rows.width - 4;
+  rejects(rows, "does not match its layout");
+}
+
 // The two stages: new cut parameters re-cut the kept analysis (the same object, no new kNN).
 TEST(RosSegmenter, RecutKeepsTheAnalysis) {
   const auto shape = pcl_ncut_seg::test::makeDumbbell(1500, 3);

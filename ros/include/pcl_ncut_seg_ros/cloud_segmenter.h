@@ -43,9 +43,10 @@ public:
   bool setParameters(const pcl_ncut_seg::Parameters& params, std::string* why);
   const pcl_ncut_seg::Parameters& parameters() const { return seg_.getParameters(); }
 
-  /** \brief Check the cloud (x, y, z as FLOAT32; a layout that matches its data; at least one
-   * finite point; indices within it), then segment it, restricted to indices if given. A bad
-   * cloud returns false with why and leaves the kept cloud as it was. */
+  /** \brief Check the cloud (x, y, z as FLOAT32; a layout that matches its data; indices
+   * within it; at least k + 1 distinct finite points, none beyond kMaxCoordinate), then
+   * segment it, restricted to indices if given. A bad cloud returns false with why and leaves
+   * the kept cloud as it was. */
   bool segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
                std::string* why);
 
@@ -68,6 +69,9 @@ public:
 
 private:
   bool run(std::string* why);
+  /** \brief Why the points (those of indices, if given) cannot be segmented, or "". */
+  std::string checkPoints(const pcl::PointCloud<pcl::PointXYZ>& points,
+                          const std::vector<int>* indices) const;
 
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg_;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_; ///< the kept cloud (null before a good one)
@@ -80,5 +84,9 @@ private:
 /** \brief Why the cloud cannot be segmented (missing x, y or z, a layout that does not match
  * the data, no points), or "" if it can. */
 std::string checkCloud(const sensor_msgs::PointCloud2& cloud);
+
+/** \brief The largest coordinate taken (1000 km): beyond it, float coordinates lie 6 cm or
+ * more apart, too coarse for parts, and their squared distances soon overflow. */
+constexpr float kMaxCoordinate = 1e6f;
 
 } // namespace pcl_ncut_seg_ros
