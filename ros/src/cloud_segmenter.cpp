@@ -15,6 +15,27 @@
 
 namespace pcl_ncut_seg_ros {
 
+namespace {
+
+/** \brief "[x, y, z]", each in its shortest decimal. */
+std::string triple(const double* v) {
+  return "[" + pcl_ncut_seg::formatNumber(v[0]) + ", " + pcl_ncut_seg::formatNumber(v[1]) + ", " +
+         pcl_ncut_seg::formatNumber(v[2]) + "]";
+}
+
+} // namespace
+
+const char* sourceName(SensorOrigin::Source source) {
+  switch (source) {
+  case SensorOrigin::Source::Tf:
+    return "tf";
+  case SensorOrigin::Source::Points:
+    return "points";
+  default:
+    return "cloud_frame";
+  }
+}
+
 std::string SegmentStats::yaml() const {
   std::ostringstream out;
   out << "{stamp: " << pcl_ncut_seg::formatNumber(stamp) << ", points: " << points
@@ -22,7 +43,12 @@ std::string SegmentStats::yaml() const {
       << ", analysed: " << (analysed ? "true" : "false") << ", analyses: " << analyses
       << ", cuts: " << cuts
       << ", analysis_seconds: " << pcl_ncut_seg::formatNumber(analysis_seconds)
-      << ", cut_seconds: " << pcl_ncut_seg::formatNumber(cut_seconds) << "}";
+      << ", cut_seconds: " << pcl_ncut_seg::formatNumber(cut_seconds)
+      << ", origin: " << sourceName(origin.source) << ", sensor_origin: "
+      << (origin.source == SensorOrigin::Source::Points ? "null" : triple(origin.xyz))
+      << ", view: " << (view ? "true" : "false")
+      << ", origin_estimated: " << (origin_estimated ? "true" : "false")
+      << ", view_origin: " << (view ? triple(view_origin) : "null") << "}";
   return out.str();
 }
 
@@ -77,7 +103,7 @@ bool CloudSegmenter::setParameters(const pcl_ncut_seg::Parameters& params, std::
 }
 
 bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
-                             std::string* why) {
+                             std::string* why, const SensorOrigin& origin) {
   std::string bad = checkCloud(cloud);
   auto points = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   if (bad.empty()) {
@@ -89,8 +115,27 @@ bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::v
       *why = bad;
     return false;
   }
+  if (origin.source == SensorOrigin::Source::Tf) {
+    points->sensor_origin_ =
+        Eigen::Vector4f(static_cast<float>(origin.xyz[0]), static_cast<float>(origin.xyz[1]),
+                        static_cast<float>(origin.xyz[2]), 0.0f);
+  } else if (origin.source == SensorOrigin::Source::Points) {
+    // An origin among the points is no sensor: the library reads the position off them.
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    std::size_t finite = 0;
+    const std::size_t n = indices ? indices->size() : points->size();
+    for (std::size_t j = 0; j < n; ++j) {
+      const pcl::PointXYZ& p = (*points)[indices ? (*indices)[j] : j];
+      if (pcl::isFinite(p)) {
+        sum += p.getVector3fMap().cast<double>();
+        ++finite;
+      }
+    }
+    points->sensor_origin_.head<3>() = (sum / static_cast<double>(finite)).cast<float>();
+  }
   cloud_ = points;
   header_ = cloud.header;
+  origin_ = origin;
   seg_.setInputCloud(cloud_);
   if (indices)
     seg_.setIndices(std::make_shared<pcl::Indices>(indices->begin(), indices->end()));
@@ -165,7 +210,23 @@ bool CloudSegmenter::run(std::string* why) {
   stats_.cuts += 1;
   stats_.analysis_seconds = t.knn + t.centrality + t.supernodes + t.refinement;
   stats_.cut_seconds = t.hierarchy + t.points;
+  stats_.origin = origin_;
+  viewStats();
   return true;
+}
+
+void CloudSegmenter::viewStats() {
+  const pcl_ncut_seg::ViewTest view = seg_.getViewTest();
+  stats_.view = view.view;
+  stats_.origin_estimated = view.view && view.origin_estimated;
+  // The test's origin is relative to the analysed points' centroid (core/view_origin.h).
+  const std::vector<int>& analysed = seg_.getAnalysedIndices();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int i : analysed)
+    centroid += (*cloud_)[i].getVector3fMap().cast<double>();
+  centroid /= static_cast<double>(std::max<std::size_t>(analysed.size(), 1));
+  for (int d = 0; d < 3; ++d)
+    stats_.view_origin[d] = view.view ? view.origin[d] + centroid[d] : 0.0;
 }
 
 void CloudSegmenter::labelledCloud(sensor_msgs::PointCloud2& out) const {

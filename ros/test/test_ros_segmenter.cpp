@@ -355,6 +355,62 @@ TEST(RosSegmenter, DegenerateAndMalformedCloudsSayWhy) {
   rejects(rows, "does not match its layout");
 }
 
+// The sensor's origin as the nodelet hands it over: from TF, none (the points'), or the
+// cloud's frame; what was used goes into the stats.
+TEST(RosSegmenter, SensorOriginAndWhatTheStatsSay) {
+  // A camera's view of a disc, moved into another frame: the camera is then at t.
+  const Eigen::Vector3f t(0.5f, -0.25f, 2.0f);
+  pcl::PointCloud<pcl::PointXYZ> moved = *pcl_ncut_seg::test::discView(1, 0.03f);
+  for (auto& p : moved)
+    p.getVector3fMap() += t;
+  const sensor_msgs::PointCloud2 msg = toMsg(moved);
+  CloudSegmenter seg;
+  std::string why;
+  SensorOrigin tf;
+  tf.source = SensorOrigin::Source::Tf;
+  for (int d = 0; d < 3; ++d)
+    tf.xyz[d] = t[d];
+  ASSERT_TRUE(seg.segment(msg, nullptr, &why, tf)) << why;
+  SegmentStats s = seg.stats();
+  EXPECT_TRUE(s.view);
+  EXPECT_FALSE(s.origin_estimated);
+  for (int d = 0; d < 3; ++d)
+    EXPECT_NEAR(s.view_origin[d], t[d], 1e-4) << d;
+  EXPECT_NE(s.yaml().find("origin: tf, sensor_origin: [0.5, -0.25, 2], view: true, "
+                          "origin_estimated: false, view_origin: ["),
+            std::string::npos)
+      << s.yaml();
+  // A re-cut keeps what the cloud came with.
+  ASSERT_TRUE(seg.setParameters(segments(2), &why)) << why;
+  ASSERT_TRUE(seg.recut(&why)) << why;
+  EXPECT_EQ(seg.stats().origin.source, SensorOrigin::Source::Tf);
+  EXPECT_FALSE(seg.stats().origin_estimated);
+
+  SensorOrigin none;
+  none.source = SensorOrigin::Source::Points;
+  ASSERT_TRUE(seg.segment(msg, nullptr, &why, none)) << why;
+  s = seg.stats();
+  EXPECT_TRUE(s.view);
+  EXPECT_TRUE(s.origin_estimated);
+  EXPECT_NE(s.yaml().find("origin: points, sensor_origin: null, view: true, "
+                          "origin_estimated: true"),
+            std::string::npos)
+      << s.yaml();
+
+  // The cloud's frame: the camera's own cloud is seen from its origin.
+  ASSERT_TRUE(seg.segment(toMsg(*pcl_ncut_seg::test::discView(1, 0.03f)), nullptr, &why)) << why;
+  s = seg.stats();
+  EXPECT_FALSE(s.origin_estimated);
+  EXPECT_NE(s.yaml().find("origin: cloud_frame, sensor_origin: [0, 0, 0], view: true"),
+            std::string::npos)
+      << s.yaml();
+  // Not a view: no view origin.
+  ASSERT_TRUE(seg.segment(toMsg(*pcl_ncut_seg::test::makeDumbbell(800, 3).cloud), nullptr, &why));
+  EXPECT_NE(seg.stats().yaml().find("view: false, origin_estimated: false, view_origin: null}"),
+            std::string::npos)
+      << seg.stats().yaml();
+}
+
 // The two stages: new cut parameters re-cut the kept analysis (the same object, no new kNN).
 TEST(RosSegmenter, RecutKeepsTheAnalysis) {
   const auto shape = pcl_ncut_seg::test::makeDumbbell(1500, 3);
