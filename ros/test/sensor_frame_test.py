@@ -80,8 +80,7 @@ class SensorFrameTest(unittest.TestCase):
         base = float32(to_frame(self.view.points, CAMERA_IN_BASE))
         got, s, seconds = self.segment(base, "base_link")
         self.assert_seen_from(s, CAMERA_IN_BASE[:3])
-        report("base_link: %d segments in %.2f s, origin %s" % (s["segments"], seconds,
-                                                               s["sensor_origin"]))
+        report("base_link: answered in %.2f s, ~stats %s" % (seconds, s))
         self.assertEqual(len(got), len(self.cli))
         self.assertEqual(max(got), max(self.cli))
         self.assertEqual(got, self.cli, "labels differ from the tool's on the camera-frame view")
