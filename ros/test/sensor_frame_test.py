@@ -3,7 +3,6 @@
 camera's frame is segmented by the tool; moved into base_link, the node must take the camera's
 origin from TF and give the same labels; moved on into odom, the origin through the tree; in a
 frame TF has never heard of, a position read off the points and one warning per period."""
-import math
 import os
 import shutil
 import sys
