@@ -27,6 +27,7 @@ FULL_PACKAGES=(
   libpcl-conversions-dev libpcl-ros-dev pcl-ros-tools python3-pcl-msgs
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   rospack-tools rosbash python3-rostest librostest-dev
+  libtf2-ros-dev tf2-tools   # ~sensor_frame; its rostest's static_transform_publisher
 )
 
 case "${1:-}" in

@@ -6,6 +6,7 @@
 #include <pcl_conversions/pcl_conversions.h>
 #include <sensor_msgs/PointField.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -14,6 +15,27 @@
 
 namespace pcl_ncut_seg_ros {
 
+namespace {
+
+/** \brief "[x, y, z]", each in its shortest decimal. */
+std::string triple(const double* v) {
+  return "[" + pcl_ncut_seg::formatNumber(v[0]) + ", " + pcl_ncut_seg::formatNumber(v[1]) + ", " +
+         pcl_ncut_seg::formatNumber(v[2]) + "]";
+}
+
+} // namespace
+
+const char* sourceName(SensorOrigin::Source source) {
+  switch (source) {
+  case SensorOrigin::Source::Tf:
+    return "tf";
+  case SensorOrigin::Source::Points:
+    return "points";
+  default:
+    return "cloud_frame";
+  }
+}
+
 std::string SegmentStats::yaml() const {
   std::ostringstream out;
   out << "{stamp: " << pcl_ncut_seg::formatNumber(stamp) << ", points: " << points
@@ -21,7 +43,12 @@ std::string SegmentStats::yaml() const {
       << ", analysed: " << (analysed ? "true" : "false") << ", analyses: " << analyses
       << ", cuts: " << cuts
       << ", analysis_seconds: " << pcl_ncut_seg::formatNumber(analysis_seconds)
-      << ", cut_seconds: " << pcl_ncut_seg::formatNumber(cut_seconds) << "}";
+      << ", cut_seconds: " << pcl_ncut_seg::formatNumber(cut_seconds)
+      << ", origin: " << sourceName(origin.source) << ", sensor_origin: "
+      << (origin.source == SensorOrigin::Source::Points ? "null" : triple(origin.xyz))
+      << ", view: " << (view ? "true" : "false")
+      << ", origin_estimated: " << (origin_estimated ? "true" : "false")
+      << ", view_origin: " << (view ? triple(view_origin) : "null") << "}";
   return out.str();
 }
 
@@ -50,9 +77,13 @@ std::string checkCloud(const sensor_msgs::PointCloud2& cloud) {
     if (!field)
       return std::string("the cloud has no field ") + axis +
              " (its fields: " + (names.empty() ? "none" : names) + ")";
+    // In 64 bits: an offset near 2^32 must not wrap around into the point.
     if (field->datatype != sensor_msgs::PointField::FLOAT32 || field->count < 1 ||
-        field->offset + 4u > cloud.point_step)
-      return std::string("the cloud's field ") + axis + " is not one FLOAT32 within a point";
+        std::uint64_t{field->offset} + 4 > cloud.point_step)
+      return std::string("the cloud's field ") + axis + " is not one FLOAT32 within a point" +
+             " (datatype " + std::to_string(field->datatype) + ", count " +
+             std::to_string(field->count) + ", offset " + std::to_string(field->offset) +
+             ", point_step " + std::to_string(cloud.point_step) + ")";
   }
   return "";
 }
@@ -72,43 +103,81 @@ bool CloudSegmenter::setParameters(const pcl_ncut_seg::Parameters& params, std::
 }
 
 bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
-                             std::string* why) {
-  const std::string bad = checkCloud(cloud);
+                             std::string* why, const SensorOrigin& origin) {
+  std::string bad = checkCloud(cloud);
+  auto points = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  if (bad.empty()) {
+    pcl::fromROSMsg(cloud, *points);
+    bad = checkPoints(*points, indices);
+  }
   if (!bad.empty()) {
     if (why)
       *why = bad;
     return false;
   }
-  auto points = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
-  pcl::fromROSMsg(cloud, *points);
-  std::size_t finite = 0;
-  if (indices) {
-    for (int i : *indices) {
-      if (i < 0 || static_cast<std::size_t>(i) >= points->size()) {
-        if (why)
-          *why = "index " + std::to_string(i) + " is outside the cloud of " +
-                 std::to_string(points->size()) + " points";
-        return false;
+  if (origin.source == SensorOrigin::Source::Tf) {
+    points->sensor_origin_ =
+        Eigen::Vector4f(static_cast<float>(origin.xyz[0]), static_cast<float>(origin.xyz[1]),
+                        static_cast<float>(origin.xyz[2]), 0.0f);
+  } else if (origin.source == SensorOrigin::Source::Points) {
+    // An origin among the points is no sensor: the library reads the position off them.
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    std::size_t finite = 0;
+    const std::size_t n = indices ? indices->size() : points->size();
+    for (std::size_t j = 0; j < n; ++j) {
+      const pcl::PointXYZ& p = (*points)[indices ? (*indices)[j] : j];
+      if (pcl::isFinite(p)) {
+        sum += p.getVector3fMap().cast<double>();
+        ++finite;
       }
-      finite += pcl::isFinite((*points)[i]);
     }
-  } else {
-    for (const pcl::PointXYZ& p : *points)
-      finite += pcl::isFinite(p);
-  }
-  if (finite == 0) {
-    if (why)
-      *why = std::string("the cloud has no finite point") + (indices ? " within the indices" : "");
-    return false;
+    points->sensor_origin_.head<3>() = (sum / static_cast<double>(finite)).cast<float>();
   }
   cloud_ = points;
   header_ = cloud.header;
+  origin_ = origin;
   seg_.setInputCloud(cloud_);
   if (indices)
     seg_.setIndices(std::make_shared<pcl::Indices>(indices->begin(), indices->end()));
   else
     seg_.setIndices(pcl::IndicesPtr());
   return run(why);
+}
+
+std::string CloudSegmenter::checkPoints(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                        const std::vector<int>* indices) const {
+  if (indices)
+    for (int i : *indices)
+      if (i < 0 || static_cast<std::size_t>(i) >= points.size())
+        return "index " + std::to_string(i) + " is outside the cloud of " +
+               std::to_string(points.size()) + " points";
+  // A kNN graph of k needs k + 1 distinct points; fewer is a crop gone wrong, not an object.
+  const std::size_t needed = static_cast<std::size_t>(seg_.getParameters().graph.k) + 1;
+  std::vector<Eigen::Vector3f> distinct; // the first `needed` of them
+  std::size_t finite = 0;
+  const std::size_t n = indices ? indices->size() : points.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    const std::size_t i = indices ? static_cast<std::size_t>((*indices)[j]) : j;
+    if (!pcl::isFinite(points[i]))
+      continue;
+    ++finite;
+    const Eigen::Vector3f p = points[i].getVector3fMap();
+    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      return "point " + std::to_string(i) + " has a coordinate of " +
+             pcl_ncut_seg::formatNumber(p.cwiseAbs().maxCoeff()) + ", beyond +-" +
+             pcl_ncut_seg::formatNumber(kMaxCoordinate);
+    if (distinct.size() < needed &&
+        std::find(distinct.begin(), distinct.end(), p) == distinct.end())
+      distinct.push_back(p);
+  }
+  const char* within = indices ? " within the indices" : "";
+  if (finite == 0)
+    return std::string("the cloud has no finite point") + within;
+  if (distinct.size() < needed)
+    return "the cloud has " + std::to_string(distinct.size()) + " distinct finite point" +
+           (distinct.size() == 1 ? "" : "s") + within + " (of " + std::to_string(finite) +
+           " finite), fewer than k + 1 = " + std::to_string(needed);
+  return "";
 }
 
 bool CloudSegmenter::recut(std::string* why) {
@@ -141,7 +210,23 @@ bool CloudSegmenter::run(std::string* why) {
   stats_.cuts += 1;
   stats_.analysis_seconds = t.knn + t.centrality + t.supernodes + t.refinement;
   stats_.cut_seconds = t.hierarchy + t.points;
+  stats_.origin = origin_;
+  viewStats();
   return true;
+}
+
+void CloudSegmenter::viewStats() {
+  const pcl_ncut_seg::ViewTest view = seg_.getViewTest();
+  stats_.view = view.view;
+  stats_.origin_estimated = view.view && view.origin_estimated;
+  // The test's origin is relative to the analysed points' centroid (core/view_origin.h).
+  const std::vector<int>& analysed = seg_.getAnalysedIndices();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int i : analysed)
+    centroid += (*cloud_)[i].getVector3fMap().cast<double>();
+  centroid /= static_cast<double>(std::max<std::size_t>(analysed.size(), 1));
+  for (int d = 0; d < 3; ++d)
+    stats_.view_origin[d] = view.view ? view.origin[d] + centroid[d] : 0.0;
 }
 
 void CloudSegmenter::labelledCloud(sensor_msgs::PointCloud2& out) const {

@@ -14,6 +14,9 @@ namespace pcl_ncut_seg_ros {
 
 namespace {
 
+/// Seconds between two warnings that ~sensor_frame has no transform.
+constexpr double kTfWarningPeriod = 5.0;
+
 /** \brief Do the two hold the same value in every row? */
 bool sameParameters(const pcl_ncut_seg::Parameters& a, const pcl_ncut_seg::Parameters& b) {
   for (const pcl_ncut_seg::ParameterInfo& row : pcl_ncut_seg::parameterTable())
@@ -47,14 +50,15 @@ void SegmentationNodelet::onInit() {
     NODELET_ERROR("~max_queue_size must be an integer >= 1, got %d; using 3", max_queue_size_);
     max_queue_size_ = 3;
   }
+  initSensorFrame();
 
   // Every parameter of the table from the private parameters, before dynamic_reconfigure's
   // server writes its own values over them.
   pcl_ncut_seg::Parameters params;
   readParameters(*pnh_, params,
-                 {"max_queue_size", "use_indices", "approximate_sync", "publish_indices", "lazy",
-                  "verbose_connection", "duration_to_warn_no_connection",
-                  "use_multithread_callback"});
+                 {"max_queue_size", "use_indices", "approximate_sync", "publish_indices",
+                  "sensor_frame", "sensor_frame_timeout", "lazy", "verbose_connection",
+                  "duration_to_warn_no_connection", "use_multithread_callback"});
   std::string why;
   if (!segmenter_.setParameters(params, &why))
     NODELET_ERROR("parameters not taken: %s; using the defaults", why.c_str());
@@ -72,14 +76,35 @@ void SegmentationNodelet::onInit() {
   reconfigure_ready_ = true;
   reconfigure_server_->updateConfig(toConfig(segmenter_.parameters()));
 
-  NODELET_INFO("segmenting %s into %s (%s%s); parameters: %s", pnh_->resolveName("input").c_str(),
-               pnh_->resolveName("output").c_str(),
+  NODELET_INFO("segmenting %s into %s (%s%s), seen from %s; parameters: %s",
+               pnh_->resolveName("input").c_str(), pnh_->resolveName("output").c_str(),
                publish_indices_ ? "pcl_msgs/PointIndices per segment" : "x y z rgb label",
                use_indices_ ? (approximate_sync_ ? ", ~indices approximately synchronized"
                                                  : ", ~indices exactly synchronized")
                             : "",
+               sensor_frame_.empty() ? "each cloud's frame"
+                                     : ("the origin of " + sensor_frame_ + " (TF)").c_str(),
                changedRows(segmenter_.parameters()).c_str());
   onInitPostProcess();
+}
+
+void SegmentationNodelet::initSensorFrame() {
+  pnh_->getParam("sensor_frame", sensor_frame_);
+  pnh_->getParam("sensor_frame_timeout", sensor_frame_timeout_);
+  if (!(sensor_frame_timeout_ >= 0.0 && sensor_frame_timeout_ <= 10.0)) { // NaN too
+    NODELET_ERROR("~sensor_frame_timeout must be a number of seconds in [0, 10], got %g; using 0.1",
+                  sensor_frame_timeout_);
+    sensor_frame_timeout_ = 0.1;
+  }
+  if (!sensor_frame_.empty() && sensor_frame_[0] == '/') { // tf2 takes no leading slash
+    NODELET_WARN("~sensor_frame '%s': using '%s'", sensor_frame_.c_str(),
+                 sensor_frame_.substr(1).c_str());
+    sensor_frame_.erase(0, 1);
+  }
+  if (sensor_frame_.empty())
+    return;
+  tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+  tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_, *nh_, true);
 }
 
 void SegmentationNodelet::subscribe() {
@@ -127,10 +152,45 @@ void SegmentationNodelet::cloudIndicesCallback(const Cloud::ConstPtr& cloud,
   process(*cloud, &list);
 }
 
-void SegmentationNodelet::process(const Cloud& cloud, const std::vector<int>* indices) {
-  std::lock_guard<std::mutex> lock(mutex_);
+SensorOrigin SegmentationNodelet::sensorOrigin(const Cloud& cloud) {
+  SensorOrigin origin;
+  if (sensor_frame_.empty())
+    return origin;
+  const std::string& frame = cloud.header.frame_id;
   std::string why;
-  if (!segmenter_.segment(cloud, indices, &why)) {
+  if (frame.empty() || frame[0] == '/') { // tf2 would complain at every poll of its wait
+    why = frame.empty() ? "the cloud has no frame_id" : "tf2 takes no frame_id with a leading /";
+  } else {
+    try {
+      const geometry_msgs::Vector3 t =
+          tf_buffer_
+              ->lookupTransform(frame, sensor_frame_, cloud.header.stamp,
+                                ros::Duration(sensor_frame_timeout_))
+              .transform.translation;
+      origin.source = SensorOrigin::Source::Tf;
+      origin.xyz[0] = t.x;
+      origin.xyz[1] = t.y;
+      origin.xyz[2] = t.z;
+      return origin;
+    } catch (const tf2::TransformException& e) {
+      why = e.what();
+    }
+  }
+  NODELET_WARN_THROTTLE(kTfWarningPeriod,
+                        "no transform from ~sensor_frame '%s' to the cloud's frame '%s' at %.6f "
+                        "(%s): the sensor's position is read off the points",
+                        sensor_frame_.c_str(), frame.c_str(), cloud.header.stamp.toSec(),
+                        why.c_str());
+  origin.source = SensorOrigin::Source::Points;
+  return origin;
+}
+
+void SegmentationNodelet::process(const Cloud& cloud, const std::vector<int>* indices) {
+  // Only a cloud that can be segmented is worth a wait for its transform, outside the lock.
+  std::string why = checkCloud(cloud);
+  const SensorOrigin origin = why.empty() ? sensorOrigin(cloud) : SensorOrigin();
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!why.empty() || !segmenter_.segment(cloud, indices, &why, origin)) {
     NODELET_ERROR("cloud of frame '%s' at %.6f not segmented: %s", cloud.header.frame_id.c_str(),
                   cloud.header.stamp.toSec(), why.c_str());
     return;

@@ -4,8 +4,13 @@ No numpy: plain Python, deterministic for a seed.
 """
 import math
 import random
+import sys
 import threading
 import time
+import xmlrpc.client
+
+import rosgraph
+import rosnode
 
 import rospy
 import yaml
@@ -112,9 +117,43 @@ def wait_for_connection(pub, timeout=30.0):
     return pub.get_num_connections() > 0
 
 
+def report(text):
+    """Print figures where the test's output shows them: the terminal (rosunit keeps stdout for
+    its XML file, where they go too)."""
+    print(text)
+    sys.__stderr__.write(text + "\n")
+    sys.__stderr__.flush()
+
+
 def stats(msg):
     return yaml.safe_load(msg.data)
 
 
+def _node_api(node):
+    return xmlrpc.client.ServerProxy(rosnode.get_api_uri(rosgraph.Master(rospy.get_name()), node))
+
+
+def wait_for_log_connection(node, timeout=30.0):
+    """Wait until the node's /rosout reaches this process (its messages before are lost)."""
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        _, _, bus = _node_api(node).getBusInfo(rospy.get_name())
+        if any(c[2] == "o" and c[4] == "/rosout" and c[1] == rospy.get_name() for c in bus):
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def node_pid(node):
+    return _node_api(node).getPid(rospy.get_name())[2]
+
+
+def resident_kib(pid):
+    """The process' resident memory (VmRSS), in KiB."""
+    with open("/proc/%d/status" % pid) as f:
+        return next(int(line.split()[1]) for line in f if line.startswith("VmRSS:"))
+
+
 __all__ = ["Collector", "Log", "PointCloud2", "Stamps", "String", "dumbbell", "labels",
-           "make_cloud", "stats", "wait_for_connection"]
+           "make_cloud", "node_pid", "report", "resident_kib", "stats", "wait_for_connection",
+           "wait_for_log_connection"]

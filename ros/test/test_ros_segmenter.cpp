@@ -315,6 +315,102 @@ TEST(RosSegmenter, BadCloudsAreRejectedAndTheKeptOneStays) {
   EXPECT_TRUE(seg.recut(&why)) << why;
 }
 
+// What a robot's stream hands over besides objects: too few distinct points, coordinates no
+// sensor gives, layouts that do not hold their points.
+TEST(RosSegmenter, DegenerateAndMalformedCloudsSayWhy) {
+  const auto shape = pcl_ncut_seg::test::makeDumbbell(800, 3);
+  CloudSegmenter seg;
+  std::string why;
+  const auto rejects = [&](const sensor_msgs::PointCloud2& msg, const std::string& words) {
+    why.clear();
+    EXPECT_FALSE(seg.segment(msg, nullptr, &why)) << words;
+    EXPECT_NE(why.find(words), std::string::npos) << why;
+  };
+  pcl::PointCloud<pcl::PointXYZ> few;
+  for (int n = 1; n <= 3; ++n) {
+    few.push_back((*shape.cloud)[n]);
+    rejects(toMsg(few), "the cloud has " + std::to_string(n) + " distinct finite point");
+  }
+  pcl::PointCloud<pcl::PointXYZ> copies; // 10 distinct points: one short of k + 1
+  for (int i = 0; i < 500; ++i)
+    copies.push_back((*shape.cloud)[i % 10]);
+  rejects(toMsg(copies), "10 distinct finite points (of 500 finite), fewer than k + 1 = 11");
+  copies.push_back((*shape.cloud)[10]);
+  EXPECT_TRUE(seg.segment(toMsg(copies), nullptr, &why)) << why;
+
+  pcl::PointCloud<pcl::PointXYZ> huge = *shape.cloud;
+  huge[5].z = -1e30f;
+  rejects(toMsg(huge), "point 5 has a coordinate of 1e+30, beyond +-1000000");
+
+  sensor_msgs::PointCloud2 wrapped = toMsg(*shape.cloud); // offset + 4 wraps round 2^32
+  wrapped.fields[0].offset = 0xfffffffeu;
+  rejects(wrapped, "field x is not one FLOAT32 within a point");
+  sensor_msgs::PointCloud2 doubles = toMsg(*shape.cloud);
+  doubles.fields[2].datatype = sensor_msgs::PointField::FLOAT64;
+  rejects(doubles, "field z is not one FLOAT32 within a point (datatype 8");
+  sensor_msgs::PointCloud2 rows = toMsg(*shape.cloud);
+  rows.height = 20;
+  rows.width = 40;
+  rows.row_step = rows.point_step * rows.width - 4;
+  rejects(rows, "does not match its layout");
+}
+
+// The sensor's origin as the nodelet hands it over: from TF, none (the points'), or the
+// cloud's frame; what was used goes into the stats.
+TEST(RosSegmenter, SensorOriginAndWhatTheStatsSay) {
+  // A camera's view of a disc, moved into another frame: the camera is then at t.
+  const Eigen::Vector3f t(0.5f, -0.25f, 2.0f);
+  pcl::PointCloud<pcl::PointXYZ> moved = *pcl_ncut_seg::test::discView(1, 0.03f);
+  for (auto& p : moved)
+    p.getVector3fMap() += t;
+  const sensor_msgs::PointCloud2 msg = toMsg(moved);
+  CloudSegmenter seg;
+  std::string why;
+  SensorOrigin tf;
+  tf.source = SensorOrigin::Source::Tf;
+  for (int d = 0; d < 3; ++d)
+    tf.xyz[d] = t[d];
+  ASSERT_TRUE(seg.segment(msg, nullptr, &why, tf)) << why;
+  SegmentStats s = seg.stats();
+  EXPECT_TRUE(s.view);
+  EXPECT_FALSE(s.origin_estimated);
+  for (int d = 0; d < 3; ++d)
+    EXPECT_NEAR(s.view_origin[d], t[d], 1e-4) << d;
+  EXPECT_NE(s.yaml().find("origin: tf, sensor_origin: [0.5, -0.25, 2], view: true, "
+                          "origin_estimated: false, view_origin: ["),
+            std::string::npos)
+      << s.yaml();
+  // A re-cut keeps what the cloud came with.
+  ASSERT_TRUE(seg.setParameters(segments(2), &why)) << why;
+  ASSERT_TRUE(seg.recut(&why)) << why;
+  EXPECT_EQ(seg.stats().origin.source, SensorOrigin::Source::Tf);
+  EXPECT_FALSE(seg.stats().origin_estimated);
+
+  SensorOrigin none;
+  none.source = SensorOrigin::Source::Points;
+  ASSERT_TRUE(seg.segment(msg, nullptr, &why, none)) << why;
+  s = seg.stats();
+  EXPECT_TRUE(s.view);
+  EXPECT_TRUE(s.origin_estimated);
+  EXPECT_NE(s.yaml().find("origin: points, sensor_origin: null, view: true, "
+                          "origin_estimated: true"),
+            std::string::npos)
+      << s.yaml();
+
+  // The cloud's frame: the camera's own cloud is seen from its origin.
+  ASSERT_TRUE(seg.segment(toMsg(*pcl_ncut_seg::test::discView(1, 0.03f)), nullptr, &why)) << why;
+  s = seg.stats();
+  EXPECT_FALSE(s.origin_estimated);
+  EXPECT_NE(s.yaml().find("origin: cloud_frame, sensor_origin: [0, 0, 0], view: true"),
+            std::string::npos)
+      << s.yaml();
+  // Not a view: no view origin.
+  ASSERT_TRUE(seg.segment(toMsg(*pcl_ncut_seg::test::makeDumbbell(800, 3).cloud), nullptr, &why));
+  EXPECT_NE(seg.stats().yaml().find("view: false, origin_estimated: false, view_origin: null}"),
+            std::string::npos)
+      << seg.stats().yaml();
+}
+
 // The two stages: new cut parameters re-cut the kept analysis (the same object, no new kNN).
 TEST(RosSegmenter, RecutKeepsTheAnalysis) {
   const auto shape = pcl_ncut_seg::test::makeDumbbell(1500, 3);

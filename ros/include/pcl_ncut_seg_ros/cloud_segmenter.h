@@ -18,6 +18,20 @@
 
 namespace pcl_ncut_seg_ros {
 
+/** \brief Where the sensor was when the cloud was taken, as the nodelet hands it over. */
+struct SensorOrigin {
+  enum class Source {
+    CloudFrame, ///< no ~sensor_frame: the origin of the cloud's frame (PCL's assumption)
+    Tf,         ///< ~sensor_frame's origin in the cloud's frame, from TF
+    Points      ///< ~sensor_frame not resolved: the position is read off the points
+  };
+  Source source = Source::CloudFrame;
+  double xyz[3] = {0, 0, 0}; ///< in the cloud's frame (Tf; 0 for CloudFrame, unused for Points)
+};
+
+/** \brief The source's name in ~stats: cloud_frame, tf or points. */
+const char* sourceName(SensorOrigin::Source source);
+
 /** \brief What the last segmentation did. */
 struct SegmentStats {
   double stamp = 0;            ///< the cloud's header stamp, in seconds
@@ -29,6 +43,12 @@ struct SegmentStats {
   std::size_t cuts = 0;        ///< cuts run so far (every segmentation is one)
   double analysis_seconds = 0; ///< of the last analysis (also when it was kept)
   double cut_seconds = 0;      ///< of the last cut
+
+  // Where the sensor was: as handed over, and as the analysis' view test found it.
+  SensorOrigin origin;               ///< the sensor origin handed over with the cloud
+  bool view = false;                 ///< the analysis took the points for one view
+  bool origin_estimated = false;     ///< that view's sensor position was read off the points
+  double view_origin[3] = {0, 0, 0}; ///< that position, in the cloud's frame (when view)
 
   /** \brief A one-line YAML mapping of the above, as the nodelet publishes on ~stats. */
   std::string yaml() const;
@@ -43,11 +63,12 @@ public:
   bool setParameters(const pcl_ncut_seg::Parameters& params, std::string* why);
   const pcl_ncut_seg::Parameters& parameters() const { return seg_.getParameters(); }
 
-  /** \brief Check the cloud (x, y, z as FLOAT32; a layout that matches its data; at least one
-   * finite point; indices within it), then segment it, restricted to indices if given. A bad
-   * cloud returns false with why and leaves the kept cloud as it was. */
+  /** \brief Check the cloud (x, y, z as FLOAT32; a layout that matches its data; indices
+   * within it; at least k + 1 distinct finite points, none beyond kMaxCoordinate), then
+   * segment it, restricted to indices if given, as seen from origin. A bad cloud returns false
+   * with why and leaves the kept cloud as it was. */
   bool segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
-               std::string* why);
+               std::string* why, const SensorOrigin& origin = SensorOrigin());
 
   /** \brief Segment the kept cloud again with the parameters now set: the analysis is kept
    * when only cut parameters changed. False with why when no cloud is kept. */
@@ -68,10 +89,16 @@ public:
 
 private:
   bool run(std::string* why);
+  /** \brief Why the points (those of indices, if given) cannot be segmented, or "". */
+  std::string checkPoints(const pcl::PointCloud<pcl::PointXYZ>& points,
+                          const std::vector<int>* indices) const;
+  /** \brief The last analysis' view test into stats_, its origin in the cloud's frame. */
+  void viewStats();
 
   pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg_;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_; ///< the kept cloud (null before a good one)
   std_msgs::Header header_;                   ///< its header
+  SensorOrigin origin_;                       ///< its sensor origin as handed over
   std::vector<pcl::PointIndices> segments_;
   SegmentStats stats_;
   std::size_t analyses_started_ = 0;
@@ -80,5 +107,9 @@ private:
 /** \brief Why the cloud cannot be segmented (missing x, y or z, a layout that does not match
  * the data, no points), or "" if it can. */
 std::string checkCloud(const sensor_msgs::PointCloud2& cloud);
+
+/** \brief The largest coordinate taken (1000 km): beyond it, float coordinates lie 6 cm or
+ * more apart, too coarse for parts, and their squared distances soon overflow. */
+constexpr float kMaxCoordinate = 1e6f;
 
 } // namespace pcl_ncut_seg_ros

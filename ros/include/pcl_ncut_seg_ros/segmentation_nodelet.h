@@ -13,7 +13,9 @@
  * ~boundary_band ...), read at start-up; the cut stages' rows also through
  * dynamic_reconfigure, where a change re-cuts the last cloud on its kept analysis and
  * publishes it again. ~max_queue_size (3), ~use_indices, ~approximate_sync, ~publish_indices
- * (false).
+ * (false). ~sensor_frame (""): the sensor's frame, whose origin in the cloud's frame at the
+ * cloud's stamp (from TF, waiting at most ~sensor_frame_timeout, 0.1 s) is the cloud's sensor
+ * origin; empty: the cloud's own frame is the sensor's.
  */
 #pragma once
 
@@ -28,12 +30,15 @@
 #include <nodelet_topic_tools/nodelet_lazy.h>
 #include <pcl_msgs/PointIndices.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <boost/thread/recursive_mutex.hpp>
 
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 namespace pcl_ncut_seg_ros {
@@ -58,7 +63,12 @@ private:
 
   void cloudCallback(const Cloud::ConstPtr& cloud);
   void cloudIndicesCallback(const Cloud::ConstPtr& cloud, const Indices::ConstPtr& indices);
+  /** \brief Read ~sensor_frame and ~sensor_frame_timeout; listen to TF when one is set. */
+  void initSensorFrame();
   void process(const Cloud& cloud, const std::vector<int>* indices);
+  /** \brief The sensor origin for the cloud: ~sensor_frame's origin from TF, or what to use
+   * instead (the cloud's frame when ~sensor_frame is empty, else the points). */
+  SensorOrigin sensorOrigin(const Cloud& cloud);
   void reconfigure(Config& config, std::uint32_t level);
   /** \brief Publish the segmenter's result on ~output and ~stats (mutex_ held). */
   void publish();
@@ -67,6 +77,8 @@ private:
   bool use_indices_ = false;
   bool approximate_sync_ = false;
   bool publish_indices_ = false;
+  std::string sensor_frame_;
+  double sensor_frame_timeout_ = 0.1;
 
   ros::Subscriber sub_input_;
   message_filters::Subscriber<Cloud> sub_input_filter_;
@@ -74,6 +86,10 @@ private:
   std::shared_ptr<ExactSync> exact_sync_;
   std::shared_ptr<ApproximateSync> approximate_sync_filter_;
   ros::Publisher pub_output_, pub_stats_;
+  // With ~sensor_frame: the listener fills the buffer on a thread of its own, so that a
+  // lookup's wait inside a cloud callback sees transforms arrive.
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
 
   std::mutex mutex_; ///< the segmenter's: clouds and reconfigurations may come on two threads
   CloudSegmenter segmenter_;
