@@ -170,7 +170,8 @@ def lzf_compress(data):
         seen[key] = i
         if len(key) == 3 and ref >= 0 and i - ref - 1 < 8192:
             length = 3
-            while i + length < len(data) and length < 264 and data[ref + length] == data[i + length]:
+            while (i + length < len(data) and length < 264
+                   and data[ref + length] == data[i + length]):
                 length += 1
             flush()
             distance, code = i - ref - 1, length - 2

@@ -28,7 +28,9 @@ TOOL = os.environ.get("PCL_NCUT_SEG_TOOL")
 SOURCE = os.environ.get("PCL_NCUT_SEG_SOURCE_DIR",
                         os.path.join(os.path.dirname(__file__), "..", ".."))
 SHARED = os.path.join(SOURCE, "..", "shared", "data")
-FLAGS = ["-segments", "3", "-k", "8"]
+# -threads 1 for the tool and the command lines: the labels do not depend on it, and OpenMP's
+# threads spin where cores are busy; run() is left to choose (one thread per worker here).
+FLAGS = ["-segments", "3", "-k", "8", "-threads", "1"]
 PARAMETERS = {"segments": "3", "k": "8"}
 TIMEOUT = 120  # seconds: every wait of these tests is bounded
 
@@ -176,7 +178,7 @@ def test_other_parameters_are_refused_on_the_same_out(inputs, first):
         batch.run(inputs[0], first[0], {"segments": 4, "k": 8}, scheduler="tcp://127.0.0.1:9")
 
 
-def test_a_changed_input_is_redone(inputs, first, cluster, tmp_path):
+def test_a_changed_input_is_redone_with_a_progress_bar(inputs, cluster, tmp_path, capfd):
     folder = tmp_path / "in"
     shutil.copytree(inputs[0] / "pcd", folder)
     out = tmp_path / "out"
@@ -184,7 +186,11 @@ def test_a_changed_input_is_redone(inputs, first, cluster, tmp_path):
     stamp = os.stat(out / "binary_0.pcd").st_mtime_ns
     shutil.copy(folder / "binary_1.pcd", folder / "binary_0.pcd")
     os.utime(folder / "binary_0.pcd", ns=(stamp + 10**9, stamp + 10**9))
-    rows = batch.run(folder, out, PARAMETERS, scheduler=cluster[0], progress=False)
+    capfd.readouterr()
+    rows = batch.run(folder, out, PARAMETERS, scheduler=cluster[0], progress=True)
+    bar = capfd.readouterr().err
+    assert "segmenting (" in bar and "up to date)" in bar and "1/1" in bar, bar
+    assert "file/s" in bar and "failed=0" in bar, bar
     assert read_bytes(out / "binary_0.pcd") == read_bytes(out / "binary_1.pcd")
     assert rows[[r["input"] for r in rows].index("binary_0.pcd")]["points"] == 340
 
@@ -239,9 +245,8 @@ def test_the_command_line_with_one_worker_gives_the_same_outputs(inputs, first, 
     folder, out = tmp_path / "in", tmp_path / "out"
     for part in ("ply", "views", "broken"):  # a part of the folder: one worker is slower
         shutil.copytree(inputs[0] / part, folder / part)
-    # -threads 1: the outputs do not depend on it, and OpenMP's threads spin on a busy machine.
     done = subprocess.run([sys.executable, "-m", "pcl_ncut_seg.batch", str(folder), str(out),
-                           *FLAGS, "-threads", "1", "--workers", "1", "--no-progress"],
+                           *FLAGS, "--workers", "1", "--no-progress"],
                           capture_output=True, text=True, timeout=TIMEOUT)
     assert done.returncode == 1, done.stderr  # 1: some inputs failed
     assert done.stderr.strip().splitlines()[-1] == (
@@ -267,7 +272,8 @@ def test_command_line_errors_are_one_line(tmp_path):
     assert "k must be" in error(str(tmp_path), str(tmp_path / "out"), "-k", "1")
 
 
-@pytest.mark.skipif(not (TOOL and os.path.isdir(SHARED)), reason="needs the tool and ../shared/data")
+@pytest.mark.skipif(not (TOOL and os.path.isdir(SHARED)),
+                    reason="needs the tool and ../shared/data")
 def test_the_shared_datas_files_are_the_tools(cluster, tmp_path):
     folder = tmp_path / "in"
     folder.mkdir()
