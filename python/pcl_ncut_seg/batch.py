@@ -21,7 +21,9 @@ import sys
 import time
 from urllib.parse import urlparse
 
-from . import Segmenter, parameter_shorthands, parameter_table
+# Segmenter under a private name: a public one would be this module's API, to stub-check.
+from . import Segmenter as _Segmenter
+from . import parameter_shorthands, parameter_table
 from ._batch_files import (JOURNAL, TABLE, Journal, remove_temporaries, write_tables,
                            write_whole)
 from ._inputs import EXTENSIONS, InputError, read_cloud
@@ -48,7 +50,7 @@ def segment_file(source, target, parameters, host_threads=None):
     options = dict(parameters)
     if "threads" not in options:
         options["threads"] = _threads_per_task(host_threads)
-    segmenter = Segmenter(**options)
+    segmenter = _Segmenter(**options)
     try:
         labels = segmenter.segment(cloud.points, sensor_origin=cloud.sensor_origin)
     except ValueError as error:
@@ -152,7 +154,7 @@ def _resolved(parameters):
     """The full parameters the keywords give (a bad one: BatchError), threads left out: the
     labels do not depend on it."""
     try:
-        values = Segmenter(**parameters).parameters
+        values = _Segmenter(**parameters).parameters
     except (ValueError, TypeError) as error:
         raise BatchError(str(error)) from None
     values.pop("threads", None)
