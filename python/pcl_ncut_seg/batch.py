@@ -21,8 +21,6 @@ import sys
 import time
 from urllib.parse import urlparse
 
-# Segmenter under a private name: a public one would be this module's API, to stub-check.
-from . import Segmenter as _Segmenter
 from . import parameter_shorthands, parameter_table
 from ._batch_files import (JOURNAL, TABLE, Journal, remove_temporaries, write_tables,
                            write_whole)
@@ -50,7 +48,7 @@ def segment_file(source, target, parameters, host_threads=None):
     options = dict(parameters)
     if "threads" not in options:
         options["threads"] = _threads_per_task(host_threads)
-    segmenter = _Segmenter(**options)
+    segmenter = _segmenter(options)
     try:
         labels = segmenter.segment(cloud.points, sensor_origin=cloud.sensor_origin)
     except ValueError as error:
@@ -60,6 +58,14 @@ def segment_file(source, target, parameters, host_threads=None):
     write_whole(target, labelled_pcd(cloud.points, labels, cloud.viewpoint))
     row["write_s"] = time.perf_counter() - start
     return row
+
+
+def _segmenter(parameters):
+    # Imported here: a name of this module would be checked by stubtest, which allows
+    # pybind11's metaclass for pcl_ncut_seg.Segmenter only.
+    from . import Segmenter
+
+    return Segmenter(**parameters)
 
 
 def _results(segmenter):
@@ -154,7 +160,7 @@ def _resolved(parameters):
     """The full parameters the keywords give (a bad one: BatchError), threads left out: the
     labels do not depend on it."""
     try:
-        values = _Segmenter(**parameters).parameters
+        values = _segmenter(parameters).parameters
     except (ValueError, TypeError) as error:
         raise BatchError(str(error)) from None
     values.pop("threads", None)
