@@ -17,6 +17,7 @@ FULL_PACKAGES=(
   libgtest-dev
   python3-dev python3-pybind11 python3-numpy python3-pytest   # the Python module and its tests
   python3-open3d python3-mypy      # the Open3D tests and example; the stub checked by mypy, stubtest
+  python3-distributed python3-dask python3-tqdm   # python -m pcl_ncut_seg.batch and its tests
   python3-venv python3-pip python3-setuptools python3-wheel ccache   # scripts/python_package.sh
   pcl-tools xvfb xauth
   clang libclang-rt-dev libomp-dev   # scripts/fuzz.sh: libFuzzer, sanitizer runtimes, OpenMP
