@@ -54,7 +54,7 @@ TEST_F(ToolTest, DefaultRunSegmentsTheBundledModel) {
     EXPECT_TRUE(found) << "no " << count << " in:\n" << r.out;
   }
   const long t = printedSegments(r.out);
-  // At least its arms, legs and tail apart from the body (data/README.md).
+  // At least its arms, legs and tail apart from the body (results/pcl_clouds.md gives the count).
   ASSERT_GE(t, 6) << r.out;
 
   Output output;
