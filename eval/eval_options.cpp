@@ -210,7 +210,7 @@ Flag choiceFlag(const std::string& name, const std::string& choices, const std::
 
 /** LCCP's and CPC's settings (psb_peers.h), scaled to the points' bounding-box diagonal. */
 std::vector<Flag> peerFlags() {
-  const std::string tuned = "-peer_settings', else PCL's tutorial values";
+  const std::string tuned = "-peer_settings' row, else psb_peers.h's PeerParams";
   return {
       textFlag("-peer_settings", "FILE",
                "LCCP's and CPC's settings per peer and input, as scripts/tune_peers.py writes "
