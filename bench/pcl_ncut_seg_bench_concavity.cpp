@@ -1,5 +1,5 @@
 /*
- * pcl_ncut_seg: times the concave-crease step (core/concavity.h) on its own: oriented normals
+ * pcl_ncut_seg: times the concave-crease step (core/cut/concavity.h) on its own: oriented normals
  * and the contact concavity of the supernodes, on a model sampled at a given size, with the
  * peak memory the step adds. With --dump FILE it writes its results, and with --compare FILE it
  * compares them with such a file (written by another build), so that two implementations can be
@@ -7,10 +7,10 @@
  *
  *   pcl_ncut_seg_bench_concavity MODEL.off N [--threads T] [--repeat R] [--dump F] [--compare F]
  */
-#include <pcl_ncut_seg/core/analysis_stages.h>
-#include <pcl_ncut_seg/core/concavity.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/pipeline.h>
+#include "core/cut/concavity.h"
+#include "core/graph/csr_graph.h"
+#include "core/pipeline/analysis_stages.h"
+#include "core/pipeline/pipeline.h"
 
 #include "mesh_sampling.h"
 #include "peak_memory.h"

@@ -6,10 +6,10 @@
  * with the given threads, and prints a hash of f and the samples: equal hashes for equal
  * results, whatever the number of threads.
  */
-#include <pcl_ncut_seg/core/centrality.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/morton.h>
-#include <pcl_ncut_seg/core/shortest_paths.h>
+#include "core/centrality/centrality.h"
+#include "core/common/morton.h"
+#include "core/graph/csr_graph.h"
+#include "core/graph/shortest_paths.h"
 
 #include "mesh_sampling.h"
 #include "timing.h"

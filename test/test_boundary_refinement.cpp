@@ -1,9 +1,9 @@
 /*
- * Boundary refinement after the hierarchy (core/boundary_refinement.h,
+ * Boundary refinement after the hierarchy (core/cut/boundary_refinement.h,
  * SupernodeNCutSegmentation::setBoundaryBand).
  */
-#include <pcl_ncut_seg/core/boundary_refinement.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
+#include "core/cut/boundary_refinement.h"
+#include "core/graph/csr_graph.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"

@@ -2,8 +2,8 @@
  * Bridging components of the kNN graph that only a sampling gap separates
  * (bridgeComponents, SupernodeNCutSegmentation::setBridgeGap).
  */
-#include <pcl_ncut_seg/core/bridging.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
+#include "core/graph/bridging.h"
+#include "core/graph/csr_graph.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"

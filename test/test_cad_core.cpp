@@ -2,8 +2,8 @@
  * CAD mode (Sec. 7) over plain arrays: the normal smoothing, ridge points, ridge distance,
  * the graph transformation and the dihedral angles between faces.
  */
-#include <pcl_ncut_seg/core/cad.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
+#include "core/cad/cad.h"
+#include "core/graph/csr_graph.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include <pcl_ncut_seg/core/centrality.h>
+#include "core/centrality/centrality.h"
 #include <support/graphs.h>
 
 #include <gtest/gtest.h>

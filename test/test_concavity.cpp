@@ -1,9 +1,9 @@
 /*
- * Concave creases between supernodes (core/concavity.h,
+ * Concave creases between supernodes (core/cut/concavity.h,
  * SupernodeNCutSegmentation::setConcavityWeight).
  */
-#include <pcl_ncut_seg/core/concavity.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
+#include "core/cut/concavity.h"
+#include "core/graph/csr_graph.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"

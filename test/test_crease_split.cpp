@@ -1,8 +1,8 @@
 /*
  * Crease splits: supernodes split along concave creases that cross them
- * (core/crease_split.h, SupernodeNCutSegmentation::setCreaseSplit).
+ * (core/supernodes/crease_split.h, SupernodeNCutSegmentation::setCreaseSplit).
  */
-#include <pcl_ncut_seg/core/crease_split.h>
+#include "core/supernodes/crease_split.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"

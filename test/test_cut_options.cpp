@@ -2,7 +2,7 @@
  * The options that extend the paper's cut (each one setting away from the paper): adjacent
  * supernode pairs in G_s.
  */
-#include <pcl_ncut_seg/core/supernode_graph.h>
+#include "core/cut/supernode_graph.h"
 
 #include "support/graphs.h"
 

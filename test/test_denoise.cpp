@@ -1,13 +1,13 @@
 /*
- * Sensor noise, detected and projected away (core/denoise.h,
+ * Sensor noise, detected and projected away (core/graph/denoise.h,
  * SupernodeNCutSegmentation::setDenoise).
  */
-#include <pcl_ncut_seg/core/analysis_stages.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/denoise.h>
-#include <pcl_ncut_seg/core/knn.h>
-#include <pcl_ncut_seg/core/pipeline.h>
-#include <pcl_ncut_seg/core/starts.h>
+#include "core/centrality/starts.h"
+#include "core/graph/csr_graph.h"
+#include "core/graph/denoise.h"
+#include "core/graph/knn.h"
+#include "core/pipeline/analysis_stages.h"
+#include "core/pipeline/pipeline.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"

@@ -1,8 +1,8 @@
 // The Fast (coarse) centrality: the same result for any number of threads, and components that
 // match the kNN graph's.
-#include <pcl_ncut_seg/core/coarse_centrality.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/knn.h>
+#include "core/centrality/coarse_centrality.h"
+#include "core/graph/csr_graph.h"
+#include "core/graph/knn.h"
 #include <support/graphs.h>
 
 #include <gtest/gtest.h>

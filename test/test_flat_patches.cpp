@@ -2,7 +2,7 @@
  * Flat patches in the supernode graph (SimilarityParams::flat_elongation,
  * SupernodeNCutSegmentation::setFlatElongation).
  */
-#include <pcl_ncut_seg/core/supernode_graph.h>
+#include "core/cut/supernode_graph.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "mesh_sampling.h"

@@ -1,7 +1,7 @@
 // The kNN phase: FLANN queries, Morton order with copies merged, and the parallel graph build.
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/knn.h>
-#include <pcl_ncut_seg/core/morton.h>
+#include "core/common/morton.h"
+#include "core/graph/csr_graph.h"
+#include "core/graph/knn.h"
 #include <support/graphs.h>
 
 #include <pcl/point_types.h>

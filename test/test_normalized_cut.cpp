@@ -1,4 +1,4 @@
-#include <pcl_ncut_seg/core/normalized_cut.h>
+#include "core/cut/normalized_cut.h"
 
 #include <gtest/gtest.h>
 

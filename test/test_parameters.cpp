@@ -1,7 +1,7 @@
 // The parameter model: the table's ranges (every row at its edges and just past them), the
 // presets, which changes invalidate the expensive stage, the README's table, and the core run
 // alone giving the labels of the PCL class.
-#include <pcl_ncut_seg/core/pipeline.h>
+#include "core/pipeline/pipeline.h"
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 

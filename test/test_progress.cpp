@@ -2,7 +2,7 @@
  * Progress reports: computeCentrality's fraction of full searches and the class's phases, from
  * the calling thread only, in order, without changing the result.
  */
-#include <pcl_ncut_seg/core/centrality.h>
+#include "core/centrality/centrality.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/graphs.h>
 #include <support/shapes.h>

@@ -1,13 +1,13 @@
 /*
  * Open views: the segments only the rim cut apart
- * (core/rim_merge.h, SupernodeNCutSegmentation::setRimMerge).
+ * (core/views/rim_merge.h, SupernodeNCutSegmentation::setRimMerge).
  */
-#include <pcl_ncut_seg/core/centrality.h>
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/cut_stages.h>
-#include <pcl_ncut_seg/core/refinement.h>
-#include <pcl_ncut_seg/core/rim_merge.h>
-#include <pcl_ncut_seg/core/supernodes.h>
+#include "core/centrality/centrality.h"
+#include "core/graph/csr_graph.h"
+#include "core/pipeline/cut_stages.h"
+#include "core/supernodes/refinement.h"
+#include "core/supernodes/supernodes.h"
+#include "core/views/rim_merge.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"
@@ -240,7 +240,7 @@ TEST(RimMerge, AnOrganizedViewOfADiscIsOneSegment) {
 
 TEST(RimMerge, AListOfAViewsPointsIsOneViewFromTheSensor) {
   // The same points as a plain list (no grid), seen from the sensor origin (0, 0, 0): one
-  // view (core/single_view.h), whose rim the points show.
+  // view (core/views/single_view.h), whose rim the points show.
   const auto view = discView();
   auto list = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   for (const auto& p : *view)

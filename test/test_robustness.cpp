@@ -152,8 +152,8 @@ TEST(Robustness, OrganizedCloudWithNanHoles) {
   Extracted merged = extractCapturing(seg);
   ASSERT_FALSE(merged.segments.empty()) << merged.err;
   expectPartition(merged.segments, *organized);
-  // Without the rim merge, which only an organized cloud's rim allows here (core/rim_merge.h):
-  // the same segmentation as the cloud without the holes.
+  // Without the rim merge, which only an organized cloud's rim allows here
+  // (core/views/rim_merge.h): the same segmentation as the cloud without the holes.
   seg.setRimMerge(std::nullopt);
   Extracted r = extractCapturing(seg);
   ASSERT_FALSE(r.segments.empty()) << r.err;
@@ -318,7 +318,7 @@ TEST(Robustness, SeveralFarApartObjects) {
 
 TEST(Robustness, DenseClusterWithOneFarOutlier) {
   // The outlier is its own connected component, so its own segment; the rest is segmented
-  // as without it (its sampling starts from its own centroid, core/starts.h).
+  // as without it (its sampling starts from its own centroid, core/centrality/starts.h).
   const LabeledShape hand = makeHand(3000, 8);
   Cloud::Ptr c(new Cloud(*hand.cloud));
   c->push_back(pcl::PointXYZ(1e4f, -3e3f, 5e2f));

@@ -1,9 +1,9 @@
 /*
- * The short-cut stopping rule (core/short_cut.h, StoppingParams::neck_bound,
+ * The short-cut stopping rule (core/cut/short_cut.h, StoppingParams::neck_bound,
  * SupernodeNCutSegmentation::setNeckBound).
  */
-#include <pcl_ncut_seg/core/normalized_cut.h>
-#include <pcl_ncut_seg/core/short_cut.h>
+#include "core/cut/normalized_cut.h"
+#include "core/cut/short_cut.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"

@@ -3,9 +3,9 @@
  * two-nearest-sources search against brute force, the Morton order, and the Fast centrality
  * against the Exact one.
  */
-#include <pcl_ncut_seg/core/coarse_centrality.h>
-#include <pcl_ncut_seg/core/morton.h>
-#include <pcl_ncut_seg/core/shortest_paths.h>
+#include "core/centrality/coarse_centrality.h"
+#include "core/common/morton.h"
+#include "core/graph/shortest_paths.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "mesh_sampling.h"

@@ -1,12 +1,12 @@
 /*
- * Single views recognised and their rims (core/single_view.h): generated views, sampled as a
+ * Single views recognised and their rims (core/views/single_view.h): generated views, sampled as a
  * camera at the origin looking along z sees them (one point per ray of a square grid of rays,
  * the surfaces behind others removed), and closed surfaces, which are no view.
  */
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/knn.h>
-#include <pcl_ncut_seg/core/single_view.h>
-#include <pcl_ncut_seg/core/stopwatch.h>
+#include "core/common/stopwatch.h"
+#include "core/graph/csr_graph.h"
+#include "core/graph/knn.h"
+#include "core/views/single_view.h"
 
 #include "support/shapes.h"
 

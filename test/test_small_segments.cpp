@@ -1,11 +1,11 @@
 /*
  * Open views: small segments joined to their neighbours unless a limb's neck holds them
- * (core/small_segments.h, the second half of SupernodeNCutSegmentation::setRimMerge's stage).
+ * (core/views/small_segments.h, the second half of SupernodeNCutSegmentation::setRimMerge's stage).
  */
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/short_cut.h>
-#include <pcl_ncut_seg/core/small_segments.h>
-#include <pcl_ncut_seg/core/supernodes.h>
+#include "core/cut/short_cut.h"
+#include "core/graph/csr_graph.h"
+#include "core/supernodes/supernodes.h"
+#include "core/views/small_segments.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"

@@ -1,10 +1,10 @@
 /*
  * Several starts of eq. (1)'s farthest-point sampling and the medoid of their segmentations
- * (core/starts.h, SupernodeNCutSegmentation::setStarts).
+ * (core/centrality/starts.h, SupernodeNCutSegmentation::setStarts).
  */
-#include <pcl_ncut_seg/core/centrality.h>
-#include <pcl_ncut_seg/core/pipeline.h>
-#include <pcl_ncut_seg/core/starts.h>
+#include "core/centrality/centrality.h"
+#include "core/centrality/starts.h"
+#include "core/pipeline/pipeline.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"

@@ -1,10 +1,10 @@
 /*
- * The analysis' resolution (core/subsample.h, graph.max_points): a dense cloud is analysed on an
- * even subset of its points (one per cube of a grid), and every other point takes its nearest
+ * The analysis' resolution (core/graph/subsample.h, graph.max_points): a dense cloud is analysed on
+ * an even subset of its points (one per cube of a grid), and every other point takes its nearest
  * analysed point's segment.
  */
-#include <pcl_ncut_seg/core/pipeline.h>
-#include <pcl_ncut_seg/core/subsample.h>
+#include "core/graph/subsample.h"
+#include "core/pipeline/pipeline.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/shapes.h"

@@ -1,4 +1,4 @@
-#include <pcl_ncut_seg/core/supernode_graph.h>
+#include "core/cut/supernode_graph.h"
 #include <support/graphs.h>
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
-#include <pcl_ncut_seg/core/refinement.h>
-#include <pcl_ncut_seg/core/supernodes.h>
+#include "core/supernodes/refinement.h"
+#include "core/supernodes/supernodes.h"
 #include <support/graphs.h>
 
 #include <gtest/gtest.h>

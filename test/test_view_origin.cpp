@@ -1,11 +1,11 @@
 /*
- * A view's sensor position read off its points (core/view_origin.h): boundary points from the
+ * A view's sensor position read off its points (core/views/view_origin.h): boundary points from the
  * points alone, and the sensor found on the axis of the rim when the cloud's origin says
  * nothing (sensor_origin_ left at 0 in the object's frame).
  */
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/knn.h>
-#include <pcl_ncut_seg/core/view_origin.h>
+#include "core/graph/csr_graph.h"
+#include "core/graph/knn.h"
+#include "core/views/view_origin.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/shapes.h"

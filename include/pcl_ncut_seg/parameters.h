@@ -55,7 +55,7 @@ enum class Adjacency {
 /** \brief When the recursive bisection of Sec. 5.2 stops. */
 enum class StoppingRule {
   Threshold, ///< the paper: bisect a part while its best NCut is at most the threshold
-  ShortCut,  ///< best-first splits weighted by how short their boundary is (core/short_cut.h)
+  ShortCut,  ///< best-first splits weighted by how short their boundary is (core/cut/short_cut.h)
   Count      ///< best-first splits until a given number of segments
 };
 
@@ -65,20 +65,20 @@ struct GraphParams {
   /// Extension: join components of the graph that only a sampling gap separates, by their
   /// shortest point pair when it is at most this many kNN radii long. Off: the paper.
   std::optional<double> bridge_gap = 3.0;
-  /// Extension (core/denoise.h): when the residual growth of the points' local plane fits is
+  /// Extension (core/graph/denoise.h): when the residual growth of the points' local plane fits is
   /// below this bound (noise, not curvature, scatters them), each point is projected onto the
   /// plane of its 2-ring before anything is measured; nullopt: never. Not in CAD mode.
   std::optional<double> denoise = 2.0;
-  /// Extension (core/denoise.h): when the sampling irregularity of the points is
+  /// Extension (core/graph/denoise.h): when the sampling irregularity of the points is
   /// at least this (0.3: points drawn at random, not spread evenly), the centrality of a whole
   /// surface is averaged over each point's neighbourhood once, as on a noisy one. nullopt:
   /// never (the paper). Not in CAD mode.
   std::optional<double> irregular_sampling = 0.3;
-  /// Extension (core/subsample.h): a denser cloud is analysed on an even subset of at most this
-  /// many of its points (one per cube of a grid), and every other point takes the segment of its
-  /// nearest analysed point. Off: every point.
+  /// Extension (core/graph/subsample.h): a denser cloud is analysed on an even subset of at most
+  /// this many of its points (one per cube of a grid), and every other point takes the segment of
+  /// its nearest analysed point. Off: every point.
   std::optional<int> max_points = 60000;
-  /// Extension (core/single_view.h): a cloud that is one view from its sensor origin (a depth
+  /// Extension (core/views/single_view.h): a cloud that is one view from its sensor origin (a depth
   /// image, organized or not, or a scanner's) is an open view with the rim the test finds.
   /// Off: a surface without a rim.
   bool single_view = true;
@@ -90,10 +90,10 @@ struct CentralityParams {
   std::optional<int> samples;
   /// Extension: Fast computes eq. (1) on a coarse graph (f within about 1-2% of Exact's).
   CentralityMode mode = CentralityMode::Fast;
-  /// Extension (core/starts.h): step 4's arbitrary first sample taken this many times (the
-  /// first samples of one farthest-point chain), a segmentation from each, and the one closest
+  /// Extension (core/centrality/starts.h): step 4's arbitrary first sample taken this many times
+  /// (the first samples of one farthest-point chain), a segmentation from each, and the one closest
   /// to the others kept. 1: one start, the paper. Not in CAD mode, nor on an open view (a
-  /// cloud with a rim, core/rim_merge.h), which gets one start.
+  /// cloud with a rim, core/views/rim_merge.h), which gets one start.
   int starts = 5;
 };
 
@@ -150,13 +150,13 @@ struct BoundaryParams {
   /// The band around each common boundary holds at most this fraction of either segment's
   /// area. Off: boundaries are supernode boundaries (the paper).
   std::optional<double> band = 0.2;
-  /// Extension (core/rim_merge.h), open views only: two touching segments, one of which
+  /// Extension (core/views/rim_merge.h), open views only: two touching segments, one of which
   /// reaches the view's rim, are merged when the planes of the boundary's two sides (each its
   /// points within half the width of the smallest part, 1% of the object's feature area, of
   /// the other side) meet at a concave angle below this many degrees (PCL's LCCP calls 10
   /// degrees convex) and the boundary is no limb's neck; then a segment smaller than the paper's
   /// small part (1% of the object's area, twice the view's) joins the neighbour it shares most
-  /// kNN edges with, unless a limb's neck holds it (core/small_segments.h). Off: the paper.
+  /// kNN edges with, unless a limb's neck holds it (core/views/small_segments.h). Off: the paper.
   std::optional<double> rim_merge = 10.0;
 };
 

@@ -14,7 +14,7 @@
 #include <pcl/point_types.h>
 #include <pcl/search/search.h>
 
-#include <pcl_ncut_seg/core/pipeline.h>
+#include "core/pipeline/pipeline.h"
 #include <pcl_ncut_seg/parameters.h>
 
 #include <functional>
@@ -158,13 +158,13 @@ public:
   /** \param[in] radii  graph.bridge_gap, > 0; std::nullopt: off */
   void setBridgeGap(std::optional<double> radii);
   std::optional<double> getBridgeGap() const { return params_.graph.bridge_gap; }
-  /** \brief Sensor noise (core/denoise.h): a cloud whose local plane fits scatter less than
+  /** \brief Sensor noise (core/graph/denoise.h): a cloud whose local plane fits scatter less than
    * growth times more over the 2-ring than over the 1-ring counts as noisy, and its points are
    * projected onto their 2-ring's planes before anything is measured.
    * \param[in] growth  graph.denoise, > 1; std::nullopt: off */
   void setDenoise(std::optional<double> growth);
   std::optional<double> getDenoise() const { return params_.graph.denoise; }
-  /** \brief Irregular sampling (core/denoise.h): when the points' spacings vary at least this
+  /** \brief Irregular sampling (core/graph/denoise.h): when the points' spacings vary at least this
    * much (samplingIrregularity(): about 0.45 for points drawn at random, 0.05-0.2 for points
    * spread evenly; 0.3 between them), the centrality of a whole surface is averaged over each
    * point's neighbourhood once, as on a noisy one. 0.3 by default (docs/sampling.md).
@@ -172,7 +172,7 @@ public:
    * paper) */
   void setIrregularSampling(std::optional<double> variation);
   std::optional<double> getIrregularSampling() const { return params_.graph.irregular_sampling; }
-  /** \brief The analysis' resolution (core/subsample.h): a cloud of more distinct points is
+  /** \brief The analysis' resolution (core/graph/subsample.h): a cloud of more distinct points is
    * analysed on an even subset of at most this many (one per cube of a grid, whatever their
    * order), and every other point takes the segment of its nearest analysed point.
    * \param[in] points  graph.max_points, >= 100; std::nullopt: off (every point is analysed) */
@@ -187,7 +187,7 @@ public:
   /** \param[in] fraction  boundary.band, in (0, 0.5]; std::nullopt: off */
   void setBoundaryBand(std::optional<double> fraction);
   std::optional<double> getBoundaryBand() const { return params_.boundary.band; }
-  /** \brief Open views (core/rim_merge.h): on one view from the sensor origin, two touching
+  /** \brief Open views (core/views/rim_merge.h): on one view from the sensor origin, two touching
    * segments, one of which reaches the view's rim, are merged when the planes of their boundary's
    * two sides meet at a concave angle below this and the boundary is no limb's neck; then a
    * segment smaller than 1% of the object's area (twice the view's) joins its neighbour unless

@@ -41,7 +41,8 @@ py::array floatArray(const py::handle& obj, const char* what) {
   const py::array a = py::module_::import("numpy").attr("asarray")(obj);
   const py::dtype dtype = a.dtype();
   const bool is_float = dtype.kind() == 'f' && (dtype.itemsize() == 4 || dtype.itemsize() == 8);
-  // (H, W, 3): a depth image's points, an organized cloud (its rim is known, core/rim_merge.h).
+  // (H, W, 3): a depth image's points, an organized cloud (its rim is known,
+  // core/views/rim_merge.h).
   const bool image = a.ndim() == 3 && a.shape(0) > 0 && a.shape(1) > 0 && a.shape(2) == 3;
   if (!(image || (a.ndim() == 2 && a.shape(1) == 3)) || !is_float)
     throw py::value_error(std::string(what) +

@@ -60,7 +60,7 @@ public:
   py::dict supernodeGraph() const;
   std::size_t numSegments() const;
   std::size_t numSupernodes(bool refined) const;
-  /** \brief The last analysis' noise test: residual_growth and projected (core/denoise.h). */
+  /** \brief The last analysis' noise test: residual_growth and projected (core/graph/denoise.h). */
   py::dict noiseTest() const;
   py::dict viewTest() const;
 

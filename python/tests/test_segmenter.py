@@ -103,7 +103,7 @@ def test_a_recut_keeps_the_expensive_stage(points):
     assert times["knn"] == times["centrality"] == times["supernodes"] == times["refinement"] == 0
     assert times["hierarchy"] > 0
     # The intermediate results are those of the start whose segments were kept (several
-    # starts, core/starts.h): as from scratch with the same parameters.
+    # starts, core/centrality/starts.h): as from scratch with the same parameters.
     fresh = pcl_ncut_seg.Segmenter()
     fresh.segment(points, **cut)
     assert np.array_equal(seg.get_centrality(), fresh.get_centrality())

@@ -219,7 +219,7 @@ void CloudSegmenter::viewStats() {
   const pcl_ncut_seg::ViewTest view = seg_.getViewTest();
   stats_.view = view.view;
   stats_.origin_estimated = view.view && view.origin_estimated;
-  // The test's origin is relative to the analysed points' centroid (core/view_origin.h).
+  // The test's origin is relative to the analysed points' centroid (core/views/view_origin.h).
   const std::vector<int>& analysed = seg_.getAnalysedIndices();
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int i : analysed)

@@ -1,9 +1,9 @@
 // Small graphs for the phase-by-phase tests.
 #pragma once
 
-#include <pcl_ncut_seg/core/csr_graph.h>
-#include <pcl_ncut_seg/core/supernode_graph.h>
-#include <pcl_ncut_seg/core/supernodes.h>
+#include "core/cut/supernode_graph.h"
+#include "core/graph/csr_graph.h"
+#include "core/supernodes/supernodes.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
  */
 #pragma once
 
-#include <pcl_ncut_seg/core/csr_graph.h>
+#include "core/graph/csr_graph.h"
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>

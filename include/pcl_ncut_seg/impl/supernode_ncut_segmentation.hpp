@@ -12,10 +12,10 @@
 #include <pcl/features/normal_3d.h>
 #include <pcl/search/kdtree.h>
 
-#include <pcl_ncut_seg/core/knn.h>
-#include <pcl_ncut_seg/core/rim_merge.h>
-#include <pcl_ncut_seg/core/subsample.h>
-#include <pcl_ncut_seg/core/threads.h>
+#include "core/common/threads.h"
+#include "core/graph/knn.h"
+#include "core/graph/subsample.h"
+#include "core/views/rim_merge.h"
 #include <pcl_ncut_seg/impl/supernode_ncut_segmentation_parameters.hpp>
 
 #include <algorithm>
@@ -184,8 +184,9 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     return false;
   // Points at exactly the position of an earlier one are analysed once and share its segment:
   // copies would fill each other's k nearest neighbours with zero-length edges. Vertices are
-  // numbered along a Morton curve (core/pipeline.h); ties go by the distance from the centroid
-  // (core/starts.h), so the order of the points changes only the segments' numbers.
+  // numbered along a Morton curve (core/pipeline/pipeline.h); ties go by the distance from the
+  // centroid (core/centrality/starts.h), so the order of the points changes only the segments'
+  // numbers.
   std::vector<float> xyz(3 * valid.size());
   for (std::size_t i = 0; i < valid.size(); ++i) {
     const PointT& p = (*input_)[valid[i]];

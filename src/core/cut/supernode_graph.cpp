@@ -1,0 +1,219 @@
+// Sec. 5.1: the graph of representative and member vertices, weights (7) and (9), conn (8).
+#include "core/cut/supernode_graph.h"
+#include "core/common/threads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace pcl_ncut_seg {
+
+Connectivity supernodeConnectivity(const CsrGraph& graph, const std::vector<float>& f,
+                                   const std::vector<std::uint32_t>& label, unsigned num_threads) {
+  const std::size_t n = graph.numVertices();
+  std::uint32_t l = 0;
+  for (std::uint32_t s : label)
+    l = std::max(l, s + 1);
+  // Group points by supernode, then sum each supernode's edges in a scratch row: O(|E|).
+  std::vector<std::uint32_t> start(l + 1, 0), members(n);
+  for (std::uint32_t s : label)
+    ++start[s + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::uint32_t p = 0; p < n; ++p)
+    members[fill[label[p]]++] = p;
+
+  // The supernodes' rows are independent sums (each in a fixed order): in parallel, then
+  // entered in supernode order, the same for any number of threads.
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> found(l);
+#pragma omp parallel num_threads(usableThreads(num_threads))
+  {
+    std::vector<double> row(l, 0.0);
+    std::vector<std::uint32_t> touched;
+#pragma omp for schedule(dynamic, 1)
+    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(l); ++si) {
+      const auto i = static_cast<std::uint32_t>(si);
+      touched.clear();
+      // Most edges stay inside i: their sum is kept in a register (row[i] in memory would make
+      // every addition wait for the previous one's store). Each sum adds in the same order.
+      double self = 0.0;
+      for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+        const std::uint32_t p = members[k];
+        for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+          const std::uint32_t q = graph.targets[e];
+          const std::uint32_t j = label[q];
+          if (j < i)
+            continue; // counted from j's side: conn is symmetric on a symmetric graph
+          // eq. (8) with the norm of eq. (3); +tiny keeps zero-length edges recorded
+          const double d = featureDistance(f[p] - f[q], graph.lengths[e]) + 1e-300;
+          if (j == i) {
+            self += d;
+            continue;
+          }
+          if (row[j] == 0.0)
+            touched.push_back(j);
+          row[j] += d;
+        }
+      }
+      if (self != 0.0) {
+        touched.push_back(i);
+        row[i] = self;
+      }
+      std::sort(touched.begin(), touched.end());
+      auto& out = found[i];
+      for (std::uint32_t j : touched) {
+        out.emplace_back(j, row[j]);
+        row[j] = 0.0;
+      }
+    }
+  }
+  Connectivity conn;
+  for (std::uint32_t i = 0; i < l; ++i)
+    for (const auto& [j, value] : found[i])
+      conn.emplace_hint(conn.end(), std::make_pair(i, j), value);
+  return conn;
+}
+
+namespace {
+double lookup(const Connectivity& conn, std::uint32_t i, std::uint32_t j) {
+  auto it = conn.find({std::min(i, j), std::max(i, j)});
+  return it == conn.end() ? 0.0 : it->second;
+}
+constexpr double kMinWeight = 1e-200; // keeps every vertex's degree positive (D regular)
+} // namespace
+
+WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stats,
+                                  const Connectivity& conn, const SimilarityParams& params,
+                                  const Connectivity* concavity) {
+  const auto l = static_cast<std::uint32_t>(sn.size());
+  WeightedGraph g;
+  g.num_vertices = 2 * l;
+  if (l == 0)
+    return g;
+
+  // Each connected component is a surface of its own, as for the centrality (Sec. 4.1): the
+  // maxima that normalize eqs. (7) and (9) and the width's unit are taken over its supernodes
+  // only, so that the weights within one object do not depend on what else the cloud holds.
+  // Supernodes of one component are joined by kNN edges, i.e. by pairs of conn.
+  std::vector<std::uint32_t> root(l);
+  std::iota(root.begin(), root.end(), 0u);
+  auto rootOf = [&root](std::uint32_t s) {
+    while (root[s] != s)
+      s = root[s] = root[root[s]];
+    return s;
+  };
+  for (const auto& [key, value] : conn)
+    if (key.first != key.second)
+      root[rootOf(key.first)] = rootOf(key.second);
+  for (std::uint32_t s = 0; s < l; ++s)
+    root[s] = rootOf(s);
+  std::vector<double> max_self(l, 0.0), max_pair(l, 0.0), total_area(l, 0.0);
+  for (const auto& [key, value] : conn) {
+    double& max = key.first == key.second ? max_self[root[key.first]] : max_pair[root[key.first]];
+    max = std::max(max, value);
+  }
+  std::vector<float> min_h(l, std::numeric_limits<float>::infinity()),
+      max_h(l, -std::numeric_limits<float>::infinity());
+  for (std::uint32_t s = 0; s < l; ++s) {
+    total_area[root[s]] += stats.area[s];
+    min_h[root[s]] = std::min(min_h[root[s]], stats.height[s]);
+    max_h[root[s]] = std::max(max_h[root[s]], stats.height[s]);
+  }
+  // Feature width is an area over a height, i.e. a length: measure it in units of
+  // sqrt(total area) so the weights do not depend on the model's units.
+  std::vector<double> width(l);
+  for (std::uint32_t s = 0; s < l; ++s) {
+    const double area = total_area[root[s]];
+    const double unit = params.normalize_width && area > 0.0 ? std::sqrt(area) : 1.0;
+    width[s] = std::max(static_cast<double>(stats.width[s]) / unit, 1e-300);
+  }
+
+  // A supernode is flat when its feature height is small against its size: f_h < e sqrt(f_a)
+  // (both lengths). Its width f_a / f_h (eq. 4) is then inflated by a near-zero height: on a
+  // plate or a cup wall, neighbouring patches differ in width a hundredfold, and eq. (9) would
+  // make their edge exp(-20) or less.
+  const double flat_elongation = params.flat_elongation.value_or(0.0);
+  std::vector<bool> flat(l, false);
+  for (std::uint32_t s = 0; s < l; ++s)
+    flat[s] = stats.height[s] < flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
+
+  // eq. (7): r_i - m_i
+  for (std::uint32_t i = 0; i < l; ++i) {
+    const double self = max_self[root[i]];
+    const double ratio = self > 0.0 ? lookup(conn, i, i) / self : 0.0;
+    const double w = std::exp(-(1.0 - ratio) / (params.beta * width[i]));
+    g.edges.push_back({i, l + i, std::max(w, kMinWeight)});
+  }
+  // eq. (9): m_i - m_j
+  const double concavity_weight = params.concavity.value_or(0.0);
+  auto similarity = [&](std::uint32_t i, std::uint32_t j) { // i and j are of one component
+    const std::uint32_t c = root[i];
+    const double max_dh = static_cast<double>(max_h[c]) - min_h[c], pair = max_pair[c];
+    const double d1 = max_dh > 0.0 ? std::abs(stats.height[i] - stats.height[j]) / max_dh : 0.0;
+    const double d2 = pair > 0.0 ? 1.0 - lookup(conn, i, j) / pair : 1.0;
+    // Flat patches (an extension): between two supernodes that are both flat, their widths
+    // say nothing about a part boundary, so the width ratio does not weaken their edge.
+    const double width_ratio =
+        flat[i] && flat[j] ? 1.0 : std::min(width[i], width[j]) / std::max(width[i], width[j]);
+    const double alpha_ij = std::max(params.alpha2 * width_ratio, 1e-300);
+    // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
+    const double crease =
+        concavity_weight > 0.0 && concavity ? concavity_weight * lookup(*concavity, i, j) : 0.0;
+    return std::max(std::exp(-d1 / params.alpha1 - d2 / alpha_ij - crease), kMinWeight);
+  };
+  std::vector<std::uint32_t> tree(l);
+  std::iota(tree.begin(), tree.end(), 0u);
+  auto find = [&](std::uint32_t s) {
+    while (tree[s] != s)
+      s = tree[s] = tree[tree[s]];
+    return s;
+  };
+  for (std::uint32_t i = 0; i < l; ++i) {
+    const std::uint32_t p = sn.parent[i];
+    if (p == kNone)
+      continue;
+    g.edges.push_back({l + std::min(i, p), l + std::max(i, p), similarity(i, p)});
+    tree[find(i)] = find(p);
+  }
+  if (params.adjacency == Adjacency::All) {
+    // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child)
+    // whose contact is a large enough share of the smaller total contact.
+    std::vector<double> contact(l, 0.0);
+    for (const auto& [key, value] : conn)
+      if (key.first != key.second) {
+        contact[key.first] += value;
+        contact[key.second] += value;
+      }
+    for (const auto& [key, value] : conn) {
+      const auto [i, j] = key;
+      if (i == j || sn.parent[i] == j || sn.parent[j] == i)
+        continue;
+      if (value < kAdjacentShare * std::min(contact[i], contact[j]))
+        continue;
+      g.edges.push_back({l + i, l + j, similarity(i, j)});
+      tree[find(i)] = find(j);
+    }
+  }
+  if (params.adjacency != Adjacency::Saddles) {
+    // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
+    // apart) would be cut at zero cost: join them where they are most connected point-wise.
+    std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;
+    for (const auto& [key, value] : conn)
+      if (key.first != key.second)
+        candidates.push_back({value, key});
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    });
+    for (const auto& [value, key] : candidates) {
+      const std::uint32_t a = find(key.first), b = find(key.second);
+      if (a == b)
+        continue;
+      tree[a] = b;
+      g.edges.push_back({l + key.first, l + key.second, similarity(key.first, key.second)});
+    }
+  }
+  return g;
+}
+
+} // namespace pcl_ncut_seg

@@ -1,0 +1,172 @@
+#include "core/graph/csr_graph.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_ncut_seg {
+
+namespace {
+float distance(const float* xyz, std::size_t a, std::size_t b) {
+  const float* pa = xyz + 3 * a;
+  const float* pb = xyz + 3 * b;
+  const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+} // namespace
+
+CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
+                                std::size_t k, int num_threads) {
+  const auto rows = static_cast<std::ptrdiff_t>(n);
+  // The kNN radius of each point: the distance to the farthest of its k nearest.
+  std::vector<float> radius(n, 0.0f);
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto p = static_cast<std::size_t>(r);
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::uint32_t q = knn[p * k + j];
+      if (q < n && q != p)
+        radius[p] = std::max(radius[p], distance(xyz, p, q));
+    }
+  }
+  // p -> q is used unless it is over kFarEdgeRatio times q's radius: a lone far point (an
+  // outlier) would otherwise reach into a surface over a distance no surface edge has, and
+  // its centrality and area would dominate the refinement thresholds (Sec. 4.3).
+  const float kFarEdgeRatio = 10.0f;
+  // The test on p -> q of length d (the same length both ways, bit for bit).
+  auto usedAt = [&](std::uint32_t q, float d) {
+    return radius[q] == 0.0f || d <= kFarEdgeRatio * radius[q];
+  };
+  // Union of both directions. A used p -> q puts q in p's row, and p in q's row unless q -> p
+  // is also a used kNN entry (then q's own entry adds it): rows hold no duplicate without a
+  // sort-and-unique pass over 2nk entries, so memory stays at the size of the result.
+  // Both scans without an early exit: where the match lies is unpredictable, and a branch per
+  // entry cost more than the entries after it.
+  auto listsUsed = [&](std::uint32_t q, std::size_t p, float d) {
+    bool lists = false;
+    for (std::size_t j = 0; j < k; ++j)
+      lists |= knn[q * k + j] == p;
+    return lists && usedAt(static_cast<std::uint32_t>(p), d);
+  };
+  auto isDuplicateInRow = [&](std::size_t p, std::size_t j) {
+    bool duplicate = false;
+    for (std::size_t i = 0; i < j; ++i)
+      duplicate |= knn[p * k + i] == knn[p * k + j];
+    return duplicate;
+  };
+  // Per kNN entry p -> q: bit 0, q goes into p's row; bit 1, p goes into q's row too.
+  std::vector<std::uint8_t> put(n * k, 0);
+  // Rows are filled in any order by the threads and sorted afterwards, so the graph is the
+  // same for any number of threads. A row starts with its own kNN entries (written by the
+  // thread that owns it), then holds the reverse ones (counted and placed atomically).
+  CsrGraph g;
+  g.offsets.assign(n + 1, 0);
+  std::uint32_t* reverse_count = g.offsets.data() + 1;
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto p = static_cast<std::size_t>(r);
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::uint32_t q = knn[p * k + j];
+      if (q >= n || q == p)
+        continue;
+      const float d = distance(xyz, p, q);
+      if (!usedAt(q, d) || isDuplicateInRow(p, j))
+        continue;
+      const bool reverse = !listsUsed(q, p, d);
+      put[p * k + j] = reverse ? 3 : 1;
+      if (reverse) {
+#pragma omp atomic
+        ++reverse_count[q];
+      }
+    }
+  }
+  auto ownCount = [&](std::size_t p) {
+    std::uint32_t c = 0;
+    for (std::size_t j = 0; j < k; ++j)
+      c += put[p * k + j] != 0;
+    return c;
+  };
+  for (std::size_t v = 0; v < n; ++v)
+    g.offsets[v + 1] += g.offsets[v] + ownCount(v);
+  g.targets.resize(g.offsets[n]);
+  // fill[v]: where v's next reverse entry goes.
+  std::vector<std::uint32_t> fill(n);
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r)
+    fill[r] = g.offsets[r] + ownCount(static_cast<std::size_t>(r));
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto p = static_cast<std::size_t>(r);
+    std::uint32_t own = g.offsets[p];
+    for (std::size_t j = 0; j < k; ++j) {
+      if (!put[p * k + j])
+        continue;
+      const std::uint32_t q = knn[p * k + j];
+      g.targets[own++] = q;
+      if (put[p * k + j] & 2) {
+        std::uint32_t at;
+#pragma omp atomic capture
+        at = fill[q]++;
+        g.targets[at] = static_cast<std::uint32_t>(p);
+      }
+    }
+  }
+  fill = std::vector<std::uint32_t>();
+  put = std::vector<std::uint8_t>();
+  g.lengths.resize(g.targets.size());
+#pragma omp parallel for num_threads(num_threads) schedule(static)
+  for (std::ptrdiff_t r = 0; r < rows; ++r) {
+    const auto v = static_cast<std::size_t>(r);
+    // Rows are short (k and a few more): an insertion sort in place, without the library
+    // sort's block moves; long rows (a hub) go to std::sort. Targets in a row are distinct.
+    std::uint32_t* row = g.targets.data() + g.offsets[v];
+    const std::uint32_t degree = g.offsets[v + 1] - g.offsets[v];
+    if (degree > 32) {
+      std::sort(row, row + degree);
+    } else {
+      for (std::uint32_t i = 1; i < degree; ++i) {
+        const std::uint32_t t = row[i];
+        std::uint32_t j = i;
+        for (; j > 0 && row[j - 1] > t; --j)
+          row[j] = row[j - 1];
+        row[j] = t;
+      }
+    }
+    for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
+      g.lengths[e] = distance(xyz, v, g.targets[e]);
+  }
+  return g;
+}
+
+std::size_t connectedComponents(const CsrGraph& graph, std::vector<std::uint32_t>& component) {
+  const std::size_t n = graph.numVertices();
+  component.assign(n, ~std::uint32_t(0));
+  std::vector<std::uint32_t> stack;
+  std::uint32_t count = 0;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (component[s] != ~std::uint32_t(0))
+      continue;
+    component[s] = count;
+    stack.push_back(static_cast<std::uint32_t>(s));
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+        const std::uint32_t w = graph.targets[e];
+        if (component[w] == ~std::uint32_t(0)) {
+          component[w] = count;
+          stack.push_back(w);
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+void measureLengths(CsrGraph& graph, const float* xyz) {
+  for (std::size_t v = 0; v < graph.numVertices(); ++v)
+    for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
+      graph.lengths[e] = distance(xyz, v, graph.targets[e]);
+}
+
+} // namespace pcl_ncut_seg

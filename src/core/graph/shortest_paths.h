@@ -1,0 +1,82 @@
+/*
+ * pcl_ncut_seg: fast shortest paths over the kNN graph for the geodesic distances of Sec. 4.1.
+ */
+#pragma once
+
+#include "core/graph/csr_graph.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_ncut_seg {
+
+/** \brief Dijkstra with Dial's bucket queue (buckets of a fixed width of distance), correcting
+ * labels within a bucket.
+ *
+ * The distances it returns equal those of Boost.Graph's Dijkstra (geodesicDistances()) bit for
+ * bit: both are the least solution of d(v) = min_u fl(d(u) + w(u, v)), d(source) = 0, in float
+ * arithmetic, whatever the order in which vertices are settled. The bucket width is twice the
+ * mean edge length, so a bucket holds a thin front of vertices and a search costs O(|E| + D / w)
+ * for a graph of geodesic diameter D, with no heap.
+ *
+ * The front's rows lie all over the graph's arrays, so a search waits mostly on memory: it
+ * fetches the rows of the vertices a few places ahead in the bucket before it needs them, and
+ * keeps one pending bit per vertex, so that the distances and bits stay in the processor's
+ * cache. It relaxes a row without a branch per edge, then queues the improved targets.
+ *
+ * One object per thread: it holds the queue. The graph must outlive it.
+ */
+class BucketDijkstra {
+public:
+  explicit BucketDijkstra(const CsrGraph& graph);
+
+  /** \brief Shortest path lengths from source.
+   * \param[in,out] dist   n floats, +infinity on every vertex the search can reach; filled in
+   * \param[in] bound      if given, a vertex v with dist[v] >= bound[v] is reached but not
+   *                       expanded (the bounded search of farthest-point sampling)
+   * \param[out] touched   if given, every vertex whose dist was set is appended to it */
+  void run(std::uint32_t source, float* dist, const float* bound = nullptr,
+           std::vector<std::uint32_t>* touched = nullptr);
+
+  /** \brief As run() with the same bound for every vertex (a ball of that radius): no array
+   * of n bounds to read. */
+  void runWithin(std::uint32_t source, float* dist, float bound,
+                 std::vector<std::uint32_t>* touched = nullptr);
+
+private:
+  enum class Bound { None, PerVertex, Uniform };
+  template <Bound kBound, bool kRecord>
+  void runImpl(std::uint32_t source, float* dist, const float* bound, float uniform_bound,
+               std::vector<std::uint32_t>* touched);
+
+  const CsrGraph& graph_;
+  double inv_width_ = 1.0;
+  std::size_t mask_ = 0;
+  std::vector<std::vector<std::uint32_t>> buckets_;
+  /// Bit v: v waits in the bucket of dist[v] (an entry there is not yet scanned).
+  std::vector<std::uint64_t> pending_;
+};
+
+/** \brief The graph with vertex order[i] renumbered as i. Rows keep their edges in the input's
+ * order (no longer sorted by target): enough for searches. */
+CsrGraph permuteGraph(const CsrGraph& graph, const std::vector<std::uint32_t>& order);
+
+} // namespace pcl_ncut_seg
+
+namespace pcl_ncut_seg {
+
+/** \brief For every vertex, its two nearest sources on the graph (a two-label Voronoi
+ * diagram). A vertex with fewer than two reachable sources gets kNone and +infinity for the
+ * missing ones. Equal distances are resolved in a fixed order, so the result is reproducible. */
+struct NearestSources {
+  struct Labels {
+    std::uint32_t first, second; ///< index into the source list
+    float first_dist, second_dist;
+  };
+  std::vector<Labels> at; ///< per vertex (one cache line holds a vertex's labels)
+};
+
+/** \brief Multi-source search from sources (vertex ids) keeping two labels per vertex. */
+NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::uint32_t>& sources);
+
+} // namespace pcl_ncut_seg
