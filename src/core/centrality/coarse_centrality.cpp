@@ -215,6 +215,178 @@ std::vector<TwoLabels> nearestTwo(const CsrGraph& g, const std::vector<std::uint
   }
   return label;
 }
+/// Step 1: an uncovered vertex becomes a representative in ascending tie_rank. On a surface,
+/// n points with mean edge length e cover an area of about n e^2 / 2, and balls of radius r
+/// packed by the greedy cover take about 4.6 r^2 each (measured); the radius is corrected once
+/// or twice if the count is off by over 25%. radius: on return, the one the cover used.
+std::vector<std::uint32_t> chooseRepresentatives(const CsrGraph& g, std::size_t num_representatives,
+                                                 const std::uint32_t* tie_rank,
+                                                 std::vector<BallSearch>& searches,
+                                                 double& radius) {
+  const std::size_t n = g.numVertices();
+  double sum = 0.0;
+  for (float w : g.lengths)
+    sum += w;
+  const double mean_edge = g.lengths.empty() ? 1.0 : sum / static_cast<double>(g.lengths.size());
+  radius = mean_edge *
+           std::sqrt(static_cast<double>(n) / (9.2 * static_cast<double>(num_representatives)));
+  std::vector<std::uint32_t> visit(n), reps;
+  for (std::uint32_t v = 0; v < n; ++v)
+    visit[tie_rank ? tie_rank[v] : v] = v;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    reps = coverByBalls(g, static_cast<float>(radius), visit, searches);
+    const double ratio =
+        static_cast<double>(reps.size()) / static_cast<double>(num_representatives);
+    if (ratio > 0.8 && ratio < 1.25)
+      break;
+    radius *= std::sqrt(ratio);
+  }
+  return reps;
+}
+
+/// Per cell a (a representative's vertices): (b, length) for each neighbour cell b > a, sorted
+/// by b, with the shortest crossing d1(u) + |uv| + d1(v) over the kNN edges (u, v) from a to b.
+using HigherCells = std::vector<std::vector<std::pair<std::uint32_t, float>>>;
+
+/// Step 3's crossings: the vertices grouped by cell, then each cell's crossings (cells in
+/// parallel, each in a fixed order).
+HigherCells shortestCrossings(const CsrGraph& g, const std::vector<TwoLabels>& near, std::size_t c,
+                              std::vector<BallSearch>& searches, int threads) {
+  const std::size_t n = g.numVertices();
+  std::vector<std::uint32_t> cell_begin(c + 1, 0), cell_vertices(n);
+  for (std::uint32_t u = 0; u < n; ++u)
+    ++cell_begin[near[u].first + 1];
+  for (std::size_t i = 0; i < c; ++i)
+    cell_begin[i + 1] += cell_begin[i];
+  {
+    std::vector<std::uint32_t> fill(cell_begin.begin(), cell_begin.end() - 1);
+    for (std::uint32_t u = 0; u < n; ++u)
+      cell_vertices[fill[near[u].first]++] = u;
+  }
+  HigherCells higher(c);
+#pragma omp parallel num_threads(threads)
+  {
+    // The shortest crossing to each neighbour cell b so far, in the thread's search distances
+    // (n >= c floats, +infinity between searches and between cells: no more memory), and the
+    // cells b met: a few per cell, sorted at the end (no sort of every crossing edge).
+    float* shortest = searches[threadId()].dist.data();
+    std::vector<std::uint32_t> met;
+#pragma omp for schedule(dynamic, 64)
+    for (std::ptrdiff_t ai = 0; ai < static_cast<std::ptrdiff_t>(c); ++ai) {
+      const auto a = static_cast<std::uint32_t>(ai);
+      met.clear();
+      for (std::uint32_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i) {
+        const std::uint32_t u = cell_vertices[i];
+        for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
+          const std::uint32_t v = g.targets[e];
+          const std::uint32_t b = near[v].first;
+          if (a < b) {
+            const float length = near[u].first_dist + g.lengths[e] + near[v].first_dist;
+            if (shortest[b] == kInf)
+              met.push_back(b); // (again if the length is +infinity: dropped below)
+            shortest[b] = std::min(shortest[b], length);
+          }
+        }
+      }
+      std::sort(met.begin(), met.end());
+      auto& out = higher[a];
+      for (std::size_t i = 0; i < met.size(); ++i)
+        if (i == 0 || met[i] != met[i - 1])
+          out.emplace_back(met[i], shortest[met[i]]);
+      for (std::uint32_t b : met)
+        shortest[b] = kInf;
+    }
+  }
+  return higher;
+}
+
+/// Step 3's coarse graph: each crossing as an edge both ways.
+CsrGraph coarseGraphOf(const HigherCells& higher) {
+  const std::size_t c = higher.size();
+  CsrGraph coarse;
+  coarse.offsets.assign(c + 1, 0);
+  for (std::uint32_t a = 0; a < c; ++a)
+    for (const auto& [b, w] : higher[a]) {
+      ++coarse.offsets[a + 1];
+      ++coarse.offsets[b + 1];
+    }
+  for (std::size_t i = 0; i < c; ++i)
+    coarse.offsets[i + 1] += coarse.offsets[i];
+  coarse.targets.resize(coarse.offsets[c]);
+  coarse.lengths.resize(coarse.offsets[c]);
+  // Rows come out sorted: a's lower neighbours arrive in ascending order (from the loop over
+  // b < a), then its higher ones in ascending order.
+  std::vector<std::uint32_t> fill(coarse.offsets.begin(), coarse.offsets.end() - 1);
+  for (std::uint32_t a = 0; a < c; ++a)
+    for (const auto& [b, w] : higher[a]) {
+      coarse.targets[fill[b]] = a;
+      coarse.lengths[fill[b]++] = w;
+    }
+  for (std::uint32_t a = 0; a < c; ++a)
+    for (const auto& [b, w] : higher[a]) {
+      coarse.targets[fill[a]] = b;
+      coarse.lengths[fill[a]++] = w;
+    }
+  return coarse;
+}
+
+/// Step 4's tie ranks: ties on the coarse graph follow the representatives' ranks.
+std::vector<std::uint32_t> coarseTieRanks(const std::vector<std::uint32_t>& reps,
+                                          const std::uint32_t* tie_rank) {
+  std::vector<std::uint32_t> coarse_rank(reps.size()), by_rank(reps.size());
+  std::iota(by_rank.begin(), by_rank.end(), 0u);
+  auto rank = [&](std::uint32_t i) { return tie_rank ? tie_rank[reps[i]] : reps[i]; };
+  std::sort(by_rank.begin(), by_rank.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return rank(a) < rank(b); });
+  for (std::uint32_t i = 0; i < by_rank.size(); ++i)
+    coarse_rank[by_rank[i]] = i;
+  return coarse_rank;
+}
+
+/// The coarse graph's paths zigzag through the representatives, so its distances exceed the
+/// kNN graph's by a few percent: the ratio (kNN over coarse) on pairs of representatives 3 to
+/// 8 radii apart, from 32 of them, with bounded searches on both graphs. The sources' searches
+/// run in parallel; the sums are taken in source order.
+float coarseDistanceScale(const CsrGraph& coarse, const std::vector<std::uint32_t>& reps,
+                          double radius, std::vector<BallSearch>& searches, int threads) {
+  const std::size_t c = reps.size();
+  const std::size_t step = std::max<std::size_t>(1, c / 32);
+  std::vector<std::vector<std::pair<float, float>>> pairs((c + step - 1) / step);
+  const auto fine_bound = static_cast<float>(8.0 * radius);
+  const auto coarse_bound = static_cast<float>(12.0 * radius);
+#pragma omp parallel num_threads(threads)
+  {
+    BallSearch& fine = searches[threadId()];
+    BucketDijkstra coarse_search(coarse);
+    std::vector<float> coarse_dist(c, kInf);
+    std::vector<std::uint32_t> coarse_touched;
+#pragma omp for schedule(dynamic, 1)
+    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(pairs.size()); ++si) {
+      const std::size_t a = static_cast<std::size_t>(si) * step;
+      fine.touched.clear();
+      coarse_touched.clear();
+      fine.search.runWithin(reps[a], fine.dist.data(), fine_bound, &fine.touched);
+      coarse_search.runWithin(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound,
+                              &coarse_touched);
+      for (std::uint32_t b : coarse_touched) {
+        const float d = fine.dist[reps[b]];
+        if (d >= 3.0 * radius && d <= 8.0 * radius)
+          pairs[si].emplace_back(d, coarse_dist[b]);
+        coarse_dist[b] = kInf;
+      }
+      for (std::uint32_t v : fine.touched)
+        fine.dist[v] = kInf;
+    }
+  }
+  double fine_sum = 0.0, coarse_sum = 0.0;
+  for (const auto& list : pairs)
+    for (const auto& [fine, coarse_d] : list) {
+      fine_sum += fine;
+      coarse_sum += coarse_d;
+    }
+  return coarse_sum > 0.0 ? static_cast<float>(fine_sum / coarse_sum) : 1.0f;
+}
+
 /// Step 5 of computeCoarseCentralities(): the coarse graph's f carried back to every vertex,
 /// linearly between its two nearest representatives.
 Centrality carryBack(const Centrality& cc, const std::vector<TwoLabels>& near,
@@ -276,177 +448,24 @@ std::vector<Centrality> computeCoarseCentralities(const CsrGraph& graph,
   if (!coarseGraphPays(n, num_representatives))
     return computeCentralities(graph, num_samples, num_threads, tie_rank, progress, num_starts);
 
-  const CsrGraph& g = graph;
-
   // Searches read the graph in vertex order: the caller's order decides how well they use the
   // cache (the PCL front end numbers points along a Morton curve).
-  // 1. Representatives. On a surface, n points with mean edge length e cover an area of about
-  //    n e^2 / 2, and balls of radius r packed by the greedy cover take about 4.6 r^2 each
-  //    (measured); the radius is corrected once or twice if the count is off by over 25%.
-  double sum = 0.0;
-  for (float w : g.lengths)
-    sum += w;
-  const double mean_edge = g.lengths.empty() ? 1.0 : sum / static_cast<double>(g.lengths.size());
-  double radius = mean_edge * std::sqrt(static_cast<double>(n) /
-                                        (9.2 * static_cast<double>(num_representatives)));
   const int threads = usableThreads(num_threads);
   std::vector<BallSearch> searches;
   for (int t = 0; t < threads; ++t)
-    searches.emplace_back(g);
-  std::vector<std::uint32_t> visit(n), reps;
-  for (std::uint32_t v = 0; v < n; ++v)
-    visit[tie_rank ? tie_rank[v] : v] = v;
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    reps = coverByBalls(g, static_cast<float>(radius), visit, searches);
-    const double ratio =
-        static_cast<double>(reps.size()) / static_cast<double>(num_representatives);
-    if (ratio > 0.8 && ratio < 1.25)
-      break;
-    radius *= std::sqrt(ratio);
-  }
-  visit = std::vector<std::uint32_t>();
-
-  // 2. The two nearest representatives of every vertex.
-  const std::vector<TwoLabels> near = nearestTwo(g, reps, threads);
-
-  // 3. The coarse graph: the shortest kNN path between neighbouring cells. The vertices are
-  //    grouped by cell; each cell lists its neighbour cells of higher index with the shortest
-  //    crossing (cells in parallel).
-  const std::size_t c = reps.size();
-  std::vector<std::uint32_t> cell_begin(c + 1, 0), cell_vertices(n);
-  for (std::uint32_t u = 0; u < n; ++u)
-    ++cell_begin[near[u].first + 1];
-  for (std::size_t i = 0; i < c; ++i)
-    cell_begin[i + 1] += cell_begin[i];
-  {
-    std::vector<std::uint32_t> fill(cell_begin.begin(), cell_begin.end() - 1);
-    for (std::uint32_t u = 0; u < n; ++u)
-      cell_vertices[fill[near[u].first]++] = u;
-  }
-  // Per cell a: (b, length) for b > a, sorted by b, one entry per b (the shortest).
-  std::vector<std::vector<std::pair<std::uint32_t, float>>> higher(c);
-#pragma omp parallel num_threads(threads)
-  {
-    // The shortest crossing to each neighbour cell b so far, in the thread's search distances
-    // (n >= c floats, +infinity between searches and between cells: no more memory), and the
-    // cells b met: a few per cell, sorted at the end (no sort of every crossing edge).
-    float* shortest = searches[threadId()].dist.data();
-    std::vector<std::uint32_t> met;
-#pragma omp for schedule(dynamic, 64)
-    for (std::ptrdiff_t ai = 0; ai < static_cast<std::ptrdiff_t>(c); ++ai) {
-      const auto a = static_cast<std::uint32_t>(ai);
-      met.clear();
-      for (std::uint32_t i = cell_begin[a]; i < cell_begin[a + 1]; ++i) {
-        const std::uint32_t u = cell_vertices[i];
-        for (std::uint32_t e = g.offsets[u]; e < g.offsets[u + 1]; ++e) {
-          const std::uint32_t v = g.targets[e];
-          const std::uint32_t b = near[v].first;
-          if (a < b) {
-            const float length = near[u].first_dist + g.lengths[e] + near[v].first_dist;
-            if (shortest[b] == kInf)
-              met.push_back(b); // (again if the length is +infinity: dropped below)
-            shortest[b] = std::min(shortest[b], length);
-          }
-        }
-      }
-      std::sort(met.begin(), met.end());
-      auto& out = higher[a];
-      for (std::size_t i = 0; i < met.size(); ++i)
-        if (i == 0 || met[i] != met[i - 1])
-          out.emplace_back(met[i], shortest[met[i]]);
-      for (std::uint32_t b : met)
-        shortest[b] = kInf;
-    }
-  }
-  cell_vertices = std::vector<std::uint32_t>();
-  CsrGraph coarse;
-  coarse.offsets.assign(c + 1, 0);
-  for (std::uint32_t a = 0; a < c; ++a)
-    for (const auto& [b, w] : higher[a]) {
-      ++coarse.offsets[a + 1];
-      ++coarse.offsets[b + 1];
-    }
-  for (std::size_t i = 0; i < c; ++i)
-    coarse.offsets[i + 1] += coarse.offsets[i];
-  coarse.targets.resize(coarse.offsets[c]);
-  coarse.lengths.resize(coarse.offsets[c]);
-  {
-    // Rows come out sorted: a's lower neighbours arrive in ascending order (from the loop over
-    // b < a), then its higher ones in ascending order.
-    std::vector<std::uint32_t> fill(coarse.offsets.begin(), coarse.offsets.end() - 1);
-    for (std::uint32_t a = 0; a < c; ++a)
-      for (const auto& [b, w] : higher[a]) {
-        coarse.targets[fill[b]] = a;
-        coarse.lengths[fill[b]++] = w;
-      }
-    for (std::uint32_t a = 0; a < c; ++a)
-      for (const auto& [b, w] : higher[a]) {
-        coarse.targets[fill[a]] = b;
-        coarse.lengths[fill[a]++] = w;
-      }
-  }
-  higher = {};
-
-  // 4. Eq. (1) on the coarse graph.
-  // Ties on the coarse graph follow the representatives' ranks.
-  std::vector<std::uint32_t> coarse_rank(reps.size());
-  {
-    std::vector<std::uint32_t> by_rank(reps.size());
-    std::iota(by_rank.begin(), by_rank.end(), 0u);
-    auto rank = [&](std::uint32_t i) { return tie_rank ? tie_rank[reps[i]] : reps[i]; };
-    std::sort(by_rank.begin(), by_rank.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return rank(a) < rank(b); });
-    for (std::uint32_t i = 0; i < by_rank.size(); ++i)
-      coarse_rank[by_rank[i]] = i;
-  }
+    searches.emplace_back(graph);
+  double radius = 0.0;
+  const std::vector<std::uint32_t> reps =
+      chooseRepresentatives(graph, num_representatives, tie_rank, searches, radius); // 1.
+  const std::vector<TwoLabels> near = nearestTwo(graph, reps, threads);              // 2.
+  const CsrGraph coarse =
+      coarseGraphOf(shortestCrossings(graph, near, reps.size(), searches, threads)); // 3.
+  const std::vector<std::uint32_t> coarse_rank = coarseTieRanks(reps, tie_rank);     // 4.
   const std::vector<Centrality> coarse_starts = computeCentralities(
       coarse, num_samples, num_threads, coarse_rank.data(), progress, num_starts);
-
-  // The coarse graph's paths zigzag through the representatives, so its distances exceed the
-  // kNN graph's by a few percent. Measure the ratio on pairs of representatives 3 to 8 radii
-  // apart, from 32 of them, with bounded searches on both graphs, and scale f by it.
-  // The sources' searches run in parallel; the sums are taken in source order.
-  const std::size_t step = std::max<std::size_t>(1, c / 32);
-  std::vector<std::vector<std::pair<float, float>>> pairs((c + step - 1) / step);
-  {
-    const auto fine_bound = static_cast<float>(8.0 * radius);
-    const auto coarse_bound = static_cast<float>(12.0 * radius);
-#pragma omp parallel num_threads(threads)
-    {
-      BallSearch& fine = searches[threadId()];
-      BucketDijkstra coarse_search(coarse);
-      std::vector<float> coarse_dist(c, kInf);
-      std::vector<std::uint32_t> coarse_touched;
-#pragma omp for schedule(dynamic, 1)
-      for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(pairs.size()); ++si) {
-        const std::size_t a = static_cast<std::size_t>(si) * step;
-        fine.touched.clear();
-        coarse_touched.clear();
-        fine.search.runWithin(reps[a], fine.dist.data(), fine_bound, &fine.touched);
-        coarse_search.runWithin(static_cast<std::uint32_t>(a), coarse_dist.data(), coarse_bound,
-                                &coarse_touched);
-        for (std::uint32_t b : coarse_touched) {
-          const float d = fine.dist[reps[b]];
-          if (d >= 3.0 * radius && d <= 8.0 * radius)
-            pairs[si].emplace_back(d, coarse_dist[b]);
-          coarse_dist[b] = kInf;
-        }
-        for (std::uint32_t v : fine.touched)
-          fine.dist[v] = kInf;
-      }
-    }
-  }
+  const float scale = coarseDistanceScale(coarse, reps, radius, searches, threads);
   searches.clear();
-  double fine_sum = 0.0, coarse_sum = 0.0;
-  for (const auto& list : pairs)
-    for (const auto& [fine, coarse_d] : list) {
-      fine_sum += fine;
-      coarse_sum += coarse_d;
-    }
-  const float scale = coarse_sum > 0.0 ? static_cast<float>(fine_sum / coarse_sum) : 1.0f;
-
-  // 5. Back to every vertex, linearly between its two nearest representatives.
-  std::vector<Centrality> all;
+  std::vector<Centrality> all; // 5.
   for (const Centrality& cc : coarse_starts)
     all.push_back(carryBack(cc, near, reps, scale, threads));
   return all;

@@ -22,13 +22,17 @@ double ratio(double cut, double volume) {
   return cut > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
-/// The subgraph induced by a vertex subset, in local ids.
+/// The subgraph induced by a vertex subset, in local ids. Member vertices (m_i) are those with
+/// a global id >= num_supernodes.
 struct Local {
   std::vector<std::uint32_t> ids; // local -> global
   std::vector<std::vector<std::pair<std::uint32_t, double>>> adj;
   std::vector<double> degree;
+  std::size_t num_supernodes;
 
-  Local(const WeightedGraph& g, const std::vector<std::uint32_t>& subset) : ids(subset) {
+  Local(const WeightedGraph& g, const std::vector<std::uint32_t>& subset,
+        std::size_t num_supernodes)
+      : ids(subset), num_supernodes(num_supernodes) {
     std::vector<std::int64_t> local(g.num_vertices, -1);
     for (std::size_t i = 0; i < ids.size(); ++i)
       local[ids[i]] = static_cast<std::int64_t>(i);
@@ -44,7 +48,155 @@ struct Local {
       degree[b] += e.w;
     }
   }
+  std::size_t size() const { return ids.size(); }
+  bool isMember(std::uint32_t local) const { return ids[local] >= num_supernodes; }
 };
+
+/// The connected components of the subset, and which of them hold a member vertex.
+struct Components {
+  std::vector<std::int32_t> of; ///< per local vertex, its component
+  std::vector<bool> has_member; ///< per component
+};
+
+Components componentsOf(const Local& g) {
+  const std::size_t c = g.size();
+  Components comps;
+  comps.of.assign(c, -1);
+  for (std::uint32_t s = 0; s < c; ++s) {
+    if (comps.of[s] >= 0)
+      continue;
+    const auto id = static_cast<std::int32_t>(comps.has_member.size());
+    comps.has_member.push_back(false);
+    std::vector<std::uint32_t> stack{s};
+    comps.of[s] = id;
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      comps.has_member[id] = comps.has_member[id] || g.isMember(v);
+      for (const auto& [u, w] : g.adj[v])
+        if (comps.of[u] < 0) {
+          comps.of[u] = id;
+          stack.push_back(u);
+        }
+    }
+  }
+  return comps;
+}
+
+/// A disconnected subset's split at NCut 0: V1 is the component of the first member vertex.
+/// Vertex-only strays (a representative without its member) ride along with V1.
+std::vector<bool> splitAlongComponents(const Local& g, const Components& comps) {
+  const std::size_t c = g.size();
+  std::vector<bool> side_v1(c, false);
+  std::int32_t first = -1;
+  for (std::uint32_t i = 0; i < c && first < 0; ++i)
+    if (g.isMember(i))
+      first = comps.of[i];
+  for (std::uint32_t i = 0; i < c; ++i)
+    side_v1[i] = comps.of[i] == first || !comps.has_member[comps.of[i]];
+  return side_v1;
+}
+
+/// The component that carries the members (the core of a spectral split), in local ids, and
+/// each local vertex's position in it (-1 outside).
+struct Core {
+  std::vector<std::uint32_t> vertices;
+  std::vector<std::int64_t> pos;
+
+  Core(const Local& g, const Components& comps) : pos(g.size(), -1) {
+    for (std::uint32_t i = 0; i < g.size(); ++i)
+      if (comps.has_member[comps.of[i]])
+        vertices.push_back(i);
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+      pos[vertices[i]] = static_cast<std::int64_t>(i);
+  }
+  std::size_t size() const { return vertices.size(); }
+};
+
+/// Eq. (10) on the core: (D - W) y = lambda D y through the symmetric D^-1/2 W D^-1/2, whose
+/// second largest eigenvector z gives y = D^-1/2 z. False if the solver fails.
+bool fiedlerVector(const Local& g, const Core& core, Eigen::VectorXd& y) {
+  const std::size_t k = core.size();
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(k, k);
+  Eigen::VectorXd inv_sqrt_d(k);
+  for (std::size_t i = 0; i < k; ++i)
+    inv_sqrt_d[i] = 1.0 / std::sqrt(g.degree[core.vertices[i]]);
+  for (std::size_t i = 0; i < k; ++i)
+    for (const auto& [u, w] : g.adj[core.vertices[i]])
+      m(i, core.pos[u]) += w * inv_sqrt_d[i] * inv_sqrt_d[core.pos[u]];
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(m);
+  if (solver.info() != Eigen::Success)
+    return false;
+  y = inv_sqrt_d.cwiseProduct(solver.eigenvectors().col(k - 2));
+  return true;
+}
+
+/// The best split of the core along y: V1 = its first `moved` vertices in ascending y.
+struct SweepResult {
+  std::vector<std::uint32_t> order; ///< core positions in ascending y (ties by position)
+  std::size_t moved = 0;            ///< 0: no split value leaves members on both sides
+  double ncut = std::numeric_limits<double>::infinity();
+};
+
+/// Sweep the uniform split values gamma (v in V1 iff y_v < gamma, Sec. 5.2) for the lowest
+/// NCut with members on both sides; if none leaves members on both sides (a tiny cluster of
+/// values at one end), every gap between consecutive values.
+SweepResult sweepSplitValues(const Local& g, const Core& core, const Eigen::VectorXd& y,
+                             std::size_t members, int num_splits) {
+  const std::size_t k = core.size();
+  SweepResult out;
+  out.order.resize(k);
+  std::vector<std::uint32_t>& order = out.order;
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return y[a] < y[b] || (y[a] == y[b] && a < b);
+  });
+  const double lo = y[order.front()], hi = y[order.back()];
+  if (!(hi > lo))
+    return out;
+  double total = 0.0;
+  for (std::size_t i = 0; i < k; ++i)
+    total += g.degree[core.vertices[i]];
+  for (const bool every_gap : {false, true}) {
+    std::vector<bool> in1(k, false);
+    double cut = 0.0, vol1 = 0.0;
+    std::size_t moved = 0, members1 = 0;
+    const std::size_t steps = every_gap ? k - 1 : static_cast<std::size_t>(num_splits);
+    for (std::size_t t = 1; t <= steps; ++t) {
+      const double gamma = lo + (hi - lo) * t / (num_splits + 1.0);
+      while (moved < k && (every_gap ? moved < t : y[order[moved]] < gamma)) {
+        const std::uint32_t v = order[moved++];
+        in1[v] = true;
+        vol1 += g.degree[core.vertices[v]];
+        members1 += g.isMember(core.vertices[v]);
+        for (const auto& [u, w] : g.adj[core.vertices[v]])
+          cut += in1[core.pos[u]] ? -w : w;
+      }
+      const bool both_sides = members1 > 0 && members1 < members; // both must hold points
+      if (both_sides) {
+        const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
+        if (ncut < out.ncut) {
+          out.ncut = ncut;
+          out.moved = moved;
+        }
+      }
+      // Split values that move no vertex give the same NCut again: skip them, so that a huge
+      // number of split values costs no more than one per vertex. One value short of the
+      // next vertex's, which leaves room for rounding.
+      if (moved == k)
+        break; // every vertex in V1: no further value leaves points on both sides
+      if (!every_gap) {
+        const double next =
+            std::floor((y[order[moved]] - lo) / (hi - lo) * (num_splits + 1.0)) - 1.0;
+        if (next > static_cast<double>(t))
+          t = static_cast<std::size_t>(std::min(next, static_cast<double>(steps)));
+      }
+    }
+    if (out.moved > 0)
+      break;
+  }
+  return out;
+}
 } // namespace
 
 double normalizedCut(const WeightedGraph& graph, const std::vector<std::uint32_t>& subset,
@@ -67,134 +219,37 @@ double normalizedCut(const WeightedGraph& graph, const std::vector<std::uint32_t
 Bisection bisect(const WeightedGraph& graph, std::size_t num_supernodes,
                  const std::vector<std::uint32_t>& subset, int num_splits) {
   Bisection out;
-  const Local g(graph, subset);
+  const Local g(graph, subset, num_supernodes);
   const std::size_t c = subset.size();
-  auto is_member = [&](std::uint32_t local) { return g.ids[local] >= num_supernodes; };
   std::size_t members = 0;
   for (std::uint32_t i = 0; i < c; ++i)
-    members += is_member(i);
+    members += g.isMember(i);
   if (members < 2)
     return out;
 
   // Components of the subset: a disconnected subset splits at NCut 0.
-  std::vector<std::int32_t> comp(c, -1);
-  std::vector<bool> comp_has_member;
-  for (std::uint32_t s = 0; s < c; ++s) {
-    if (comp[s] >= 0)
-      continue;
-    const auto id = static_cast<std::int32_t>(comp_has_member.size());
-    comp_has_member.push_back(false);
-    std::vector<std::uint32_t> stack{s};
-    comp[s] = id;
-    while (!stack.empty()) {
-      const std::uint32_t v = stack.back();
-      stack.pop_back();
-      comp_has_member[id] = comp_has_member[id] || is_member(v);
-      for (const auto& [u, w] : g.adj[v])
-        if (comp[u] < 0) {
-          comp[u] = id;
-          stack.push_back(u);
-        }
-    }
-  }
-  std::vector<bool> side_v1(c, false);
-  const std::size_t member_comps =
-      static_cast<std::size_t>(std::count(comp_has_member.begin(), comp_has_member.end(), true));
-  if (member_comps >= 2) {
-    std::int32_t first = -1;
-    for (std::uint32_t i = 0; i < c && first < 0; ++i)
-      if (is_member(i))
-        first = comp[i];
-    // Vertex-only strays (a representative without its member) ride along with V1.
-    for (std::uint32_t i = 0; i < c; ++i)
-      side_v1[i] = comp[i] == first || !comp_has_member[comp[i]];
+  const Components comps = componentsOf(g);
+  std::vector<bool> side_v1;
+  if (std::count(comps.has_member.begin(), comps.has_member.end(), true) >= 2) {
+    side_v1 = splitAlongComponents(g, comps);
     out.ncut = 0.0;
   } else {
-    // One component carries the members: solve (D - W) y = lambda D y on it (eq. 10) through
-    // the symmetric D^-1/2 W D^-1/2, whose second largest eigenvector z gives y = D^-1/2 z.
-    std::vector<std::uint32_t> core;
-    for (std::uint32_t i = 0; i < c; ++i)
-      if (comp_has_member[comp[i]])
-        core.push_back(i);
-    const std::size_t k = core.size();
-    std::vector<std::int64_t> pos(c, -1);
-    for (std::size_t i = 0; i < k; ++i)
-      pos[core[i]] = static_cast<std::int64_t>(i);
-    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(k, k);
-    Eigen::VectorXd inv_sqrt_d(k);
-    for (std::size_t i = 0; i < k; ++i)
-      inv_sqrt_d[i] = 1.0 / std::sqrt(g.degree[core[i]]);
-    for (std::size_t i = 0; i < k; ++i)
-      for (const auto& [u, w] : g.adj[core[i]])
-        m(i, pos[u]) += w * inv_sqrt_d[i] * inv_sqrt_d[pos[u]];
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(m);
-    if (solver.info() != Eigen::Success)
+    // One component carries the members: split it along its Fiedler vector.
+    const Core core(g, comps);
+    Eigen::VectorXd y;
+    if (!fiedlerVector(g, core, y))
       return out;
-    const Eigen::VectorXd y = inv_sqrt_d.cwiseProduct(solver.eigenvectors().col(k - 2));
-
-    // Sweep the uniform split values gamma: v in V1 iff y_v < gamma.
-    std::vector<std::uint32_t> order(k);
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return y[a] < y[b] || (y[a] == y[b] && a < b);
-    });
-    const double lo = y[order.front()], hi = y[order.back()];
-    if (!(hi > lo))
+    const SweepResult sweep = sweepSplitValues(g, core, y, members, num_splits);
+    if (sweep.moved == 0)
       return out;
-    double total = 0.0;
-    for (std::size_t i = 0; i < k; ++i)
-      total += g.degree[core[i]];
-    // Uniform split values as in the paper; if none leaves points on both sides (a tiny
-    // cluster of values at one end), every gap between consecutive values.
-    std::size_t best_moved = 0;
-    double best = std::numeric_limits<double>::infinity();
-    for (const bool every_gap : {false, true}) {
-      std::vector<bool> in1(k, false);
-      double cut = 0.0, vol1 = 0.0;
-      std::size_t moved = 0, members1 = 0;
-      const std::size_t steps = every_gap ? k - 1 : static_cast<std::size_t>(num_splits);
-      for (std::size_t t = 1; t <= steps; ++t) {
-        const double gamma = lo + (hi - lo) * t / (num_splits + 1.0);
-        while (moved < k && (every_gap ? moved < t : y[order[moved]] < gamma)) {
-          const std::uint32_t v = order[moved++];
-          in1[v] = true;
-          vol1 += g.degree[core[v]];
-          members1 += is_member(core[v]);
-          for (const auto& [u, w] : g.adj[core[v]])
-            cut += in1[pos[u]] ? -w : w;
-        }
-        const bool both_sides = members1 > 0 && members1 < members; // both must hold points
-        if (both_sides) {
-          const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
-          if (ncut < best) {
-            best = ncut;
-            best_moved = moved;
-          }
-        }
-        // Split values that move no vertex give the same NCut again: skip them, so that a huge
-        // number of split values costs no more than one per vertex. One value short of the
-        // next vertex's, which leaves room for rounding.
-        if (moved == k)
-          break; // every vertex in V1: no further value leaves points on both sides
-        if (!every_gap) {
-          const double next =
-              std::floor((y[order[moved]] - lo) / (hi - lo) * (num_splits + 1.0)) - 1.0;
-          if (next > static_cast<double>(t))
-            t = static_cast<std::size_t>(std::min(next, static_cast<double>(steps)));
-        }
-      }
-      if (best_moved > 0)
-        break;
-    }
-    if (best_moved == 0)
-      return out;
-    for (std::size_t i = 0; i < best_moved; ++i)
-      side_v1[core[order[i]]] = true;
+    side_v1.assign(c, false);
+    for (std::size_t i = 0; i < sweep.moved; ++i)
+      side_v1[core.vertices[sweep.order[i]]] = true;
     // Strays have no edge in the subset, so their side does not change the NCut.
     for (std::uint32_t i = 0; i < c; ++i)
-      if (!comp_has_member[comp[i]])
+      if (!comps.has_member[comps.of[i]])
         side_v1[i] = true;
-    out.ncut = best;
+    out.ncut = sweep.ncut;
   }
   // Canonical orientation: V1 holds the subset's smallest vertex.
   if (!side_v1[0])

@@ -81,6 +81,181 @@ double lookup(const Connectivity& conn, std::uint32_t i, std::uint32_t j) {
   return it == conn.end() ? 0.0 : it->second;
 }
 constexpr double kMinWeight = 1e-200; // keeps every vertex's degree positive (D regular)
+
+/// Each connected component is a surface of its own, as for the centrality (Sec. 4.1): the
+/// maxima that normalize eqs. (7) and (9) and the width's unit are taken over its supernodes
+/// only, so that the weights within one object do not depend on what else the cloud holds.
+/// Per component (indexed by its root supernode) and per supernode, what the weights read.
+struct ComponentScales {
+  std::vector<std::uint32_t> root;        ///< per supernode, its component's root
+  std::vector<double> max_self, max_pair; ///< per root: the largest conn(i, i), conn(i, j)
+  std::vector<float> min_h, max_h;        ///< per root: the range of feature heights
+  std::vector<double> width;              ///< per supernode, in units of sqrt(total area)
+  std::vector<bool> flat;                 ///< per supernode: f_h small against its size
+
+  ComponentScales(const FeatureStats& stats, const Connectivity& conn,
+                  const SimilarityParams& params, std::uint32_t l);
+
+private:
+  void findComponents(const Connectivity& conn, std::uint32_t l);
+};
+
+ComponentScales::ComponentScales(const FeatureStats& stats, const Connectivity& conn,
+                                 const SimilarityParams& params, std::uint32_t l)
+    : max_self(l, 0.0), max_pair(l, 0.0), min_h(l, std::numeric_limits<float>::infinity()),
+      max_h(l, -std::numeric_limits<float>::infinity()), width(l), flat(l, false) {
+  findComponents(conn, l);
+  for (const auto& [key, value] : conn) {
+    double& max = key.first == key.second ? max_self[root[key.first]] : max_pair[root[key.first]];
+    max = std::max(max, value);
+  }
+  std::vector<double> total_area(l, 0.0);
+  for (std::uint32_t s = 0; s < l; ++s) {
+    total_area[root[s]] += stats.area[s];
+    min_h[root[s]] = std::min(min_h[root[s]], stats.height[s]);
+    max_h[root[s]] = std::max(max_h[root[s]], stats.height[s]);
+  }
+  // Feature width is an area over a height, i.e. a length: measure it in units of
+  // sqrt(total area) so the weights do not depend on the model's units.
+  for (std::uint32_t s = 0; s < l; ++s) {
+    const double area = total_area[root[s]];
+    const double unit = params.normalize_width && area > 0.0 ? std::sqrt(area) : 1.0;
+    width[s] = std::max(static_cast<double>(stats.width[s]) / unit, 1e-300);
+  }
+  // A supernode is flat when its feature height is small against its size: f_h < e sqrt(f_a)
+  // (both lengths). Its width f_a / f_h (eq. 4) is then inflated by a near-zero height: on a
+  // plate or a cup wall, neighbouring patches differ in width a hundredfold, and eq. (9) would
+  // make their edge exp(-20) or less.
+  const double flat_elongation = params.flat_elongation.value_or(0.0);
+  for (std::uint32_t s = 0; s < l; ++s)
+    flat[s] = stats.height[s] < flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
+}
+
+/// Supernodes of one component are joined by kNN edges, i.e. by pairs of conn.
+void ComponentScales::findComponents(const Connectivity& conn, std::uint32_t l) {
+  root.resize(l);
+  std::iota(root.begin(), root.end(), 0u);
+  auto rootOf = [this](std::uint32_t s) {
+    while (root[s] != s)
+      s = root[s] = root[root[s]];
+    return s;
+  };
+  for (const auto& [key, value] : conn)
+    if (key.first != key.second)
+      root[rootOf(key.first)] = rootOf(key.second);
+  for (std::uint32_t s = 0; s < l; ++s)
+    root[s] = rootOf(s);
+}
+
+/// G_s's edges as they are added: r_i - m_i by eq. (7), m_i - m_j by eq. (9), with the trees of
+/// member vertices they join so far (union-find over supernodes).
+class SupernodeEdges {
+public:
+  SupernodeEdges(const FeatureStats& stats, const Connectivity& conn,
+                 const SimilarityParams& params, const Connectivity* concavity, std::uint32_t l,
+                 WeightedGraph& g)
+      : stats_(stats), conn_(conn), params_(params), concavity_(concavity), l_(l), g_(g),
+        scales_(stats, conn, params, l), tree_(l) {
+    std::iota(tree_.begin(), tree_.end(), 0u);
+  }
+
+  /// eq. (7): r_i - m_i.
+  void addRepresentativeEdges() {
+    for (std::uint32_t i = 0; i < l_; ++i) {
+      const double self = scales_.max_self[scales_.root[i]];
+      const double ratio = self > 0.0 ? lookup(conn_, i, i) / self : 0.0;
+      const double w = std::exp(-(1.0 - ratio) / (params_.beta * scales_.width[i]));
+      g_.edges.push_back({i, l_ + i, std::max(w, kMinWeight)});
+    }
+  }
+
+  /// eq. (9) between each supernode and the one created at the saddle where it terminates.
+  void addSaddleEdges(const Supernodes& sn) {
+    for (std::uint32_t i = 0; i < l_; ++i) {
+      const std::uint32_t p = sn.parent[i];
+      if (p == kNone)
+        continue;
+      g_.edges.push_back({l_ + std::min(i, p), l_ + std::max(i, p), similarity(i, p)});
+      tree_[find(i)] = find(p);
+    }
+  }
+
+  /// Adjacency::All: every kNN-adjacent pair not yet joined at a saddle (the saddle edges are
+  /// parent-child) whose contact is a large enough share of the smaller total contact.
+  void addAdjacentEdges(const Supernodes& sn) {
+    std::vector<double> contact(l_, 0.0);
+    for (const auto& [key, value] : conn_)
+      if (key.first != key.second) {
+        contact[key.first] += value;
+        contact[key.second] += value;
+      }
+    for (const auto& [key, value] : conn_) {
+      const auto [i, j] = key;
+      if (i == j || sn.parent[i] == j || sn.parent[j] == i)
+        continue;
+      if (value < kAdjacentShare * std::min(contact[i], contact[j]))
+        continue;
+      g_.edges.push_back({l_ + i, l_ + j, similarity(i, j)});
+      tree_[find(i)] = find(j);
+    }
+  }
+
+  /// Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
+  /// apart) would be cut at zero cost: join them where they are most connected point-wise.
+  void joinSeparateTrees() {
+    std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;
+    for (const auto& [key, value] : conn_)
+      if (key.first != key.second)
+        candidates.push_back({value, key});
+    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    });
+    for (const auto& [value, key] : candidates) {
+      const std::uint32_t a = find(key.first), b = find(key.second);
+      if (a == b)
+        continue;
+      tree_[a] = b;
+      g_.edges.push_back({l_ + key.first, l_ + key.second, similarity(key.first, key.second)});
+    }
+  }
+
+private:
+  /// eq. (9) between m_i and m_j of one component.
+  double similarity(std::uint32_t i, std::uint32_t j) const {
+    const std::uint32_t c = scales_.root[i];
+    const double max_dh = static_cast<double>(scales_.max_h[c]) - scales_.min_h[c];
+    const double pair = scales_.max_pair[c];
+    const double d1 = max_dh > 0.0 ? std::abs(stats_.height[i] - stats_.height[j]) / max_dh : 0.0;
+    const double d2 = pair > 0.0 ? 1.0 - lookup(conn_, i, j) / pair : 1.0;
+    const std::vector<double>& width = scales_.width;
+    // Flat patches (an extension): between two supernodes that are both flat, their widths
+    // say nothing about a part boundary, so the width ratio does not weaken their edge.
+    const double width_ratio = scales_.flat[i] && scales_.flat[j]
+                                   ? 1.0
+                                   : std::min(width[i], width[j]) / std::max(width[i], width[j]);
+    const double alpha_ij = std::max(params_.alpha2 * width_ratio, 1e-300);
+    // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
+    const double concavity_weight = params_.concavity.value_or(0.0);
+    const double crease =
+        concavity_weight > 0.0 && concavity_ ? concavity_weight * lookup(*concavity_, i, j) : 0.0;
+    return std::max(std::exp(-d1 / params_.alpha1 - d2 / alpha_ij - crease), kMinWeight);
+  }
+
+  std::uint32_t find(std::uint32_t s) {
+    while (tree_[s] != s)
+      s = tree_[s] = tree_[tree_[s]];
+    return s;
+  }
+
+  const FeatureStats& stats_;
+  const Connectivity& conn_;
+  const SimilarityParams& params_;
+  const Connectivity* concavity_;
+  const std::uint32_t l_;
+  WeightedGraph& g_;
+  const ComponentScales scales_;
+  std::vector<std::uint32_t> tree_;
+};
 } // namespace
 
 WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stats,
@@ -91,128 +266,13 @@ WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stat
   g.num_vertices = 2 * l;
   if (l == 0)
     return g;
-
-  // Each connected component is a surface of its own, as for the centrality (Sec. 4.1): the
-  // maxima that normalize eqs. (7) and (9) and the width's unit are taken over its supernodes
-  // only, so that the weights within one object do not depend on what else the cloud holds.
-  // Supernodes of one component are joined by kNN edges, i.e. by pairs of conn.
-  std::vector<std::uint32_t> root(l);
-  std::iota(root.begin(), root.end(), 0u);
-  auto rootOf = [&root](std::uint32_t s) {
-    while (root[s] != s)
-      s = root[s] = root[root[s]];
-    return s;
-  };
-  for (const auto& [key, value] : conn)
-    if (key.first != key.second)
-      root[rootOf(key.first)] = rootOf(key.second);
-  for (std::uint32_t s = 0; s < l; ++s)
-    root[s] = rootOf(s);
-  std::vector<double> max_self(l, 0.0), max_pair(l, 0.0), total_area(l, 0.0);
-  for (const auto& [key, value] : conn) {
-    double& max = key.first == key.second ? max_self[root[key.first]] : max_pair[root[key.first]];
-    max = std::max(max, value);
-  }
-  std::vector<float> min_h(l, std::numeric_limits<float>::infinity()),
-      max_h(l, -std::numeric_limits<float>::infinity());
-  for (std::uint32_t s = 0; s < l; ++s) {
-    total_area[root[s]] += stats.area[s];
-    min_h[root[s]] = std::min(min_h[root[s]], stats.height[s]);
-    max_h[root[s]] = std::max(max_h[root[s]], stats.height[s]);
-  }
-  // Feature width is an area over a height, i.e. a length: measure it in units of
-  // sqrt(total area) so the weights do not depend on the model's units.
-  std::vector<double> width(l);
-  for (std::uint32_t s = 0; s < l; ++s) {
-    const double area = total_area[root[s]];
-    const double unit = params.normalize_width && area > 0.0 ? std::sqrt(area) : 1.0;
-    width[s] = std::max(static_cast<double>(stats.width[s]) / unit, 1e-300);
-  }
-
-  // A supernode is flat when its feature height is small against its size: f_h < e sqrt(f_a)
-  // (both lengths). Its width f_a / f_h (eq. 4) is then inflated by a near-zero height: on a
-  // plate or a cup wall, neighbouring patches differ in width a hundredfold, and eq. (9) would
-  // make their edge exp(-20) or less.
-  const double flat_elongation = params.flat_elongation.value_or(0.0);
-  std::vector<bool> flat(l, false);
-  for (std::uint32_t s = 0; s < l; ++s)
-    flat[s] = stats.height[s] < flat_elongation * std::sqrt(std::max(stats.area[s], 0.0f));
-
-  // eq. (7): r_i - m_i
-  for (std::uint32_t i = 0; i < l; ++i) {
-    const double self = max_self[root[i]];
-    const double ratio = self > 0.0 ? lookup(conn, i, i) / self : 0.0;
-    const double w = std::exp(-(1.0 - ratio) / (params.beta * width[i]));
-    g.edges.push_back({i, l + i, std::max(w, kMinWeight)});
-  }
-  // eq. (9): m_i - m_j
-  const double concavity_weight = params.concavity.value_or(0.0);
-  auto similarity = [&](std::uint32_t i, std::uint32_t j) { // i and j are of one component
-    const std::uint32_t c = root[i];
-    const double max_dh = static_cast<double>(max_h[c]) - min_h[c], pair = max_pair[c];
-    const double d1 = max_dh > 0.0 ? std::abs(stats.height[i] - stats.height[j]) / max_dh : 0.0;
-    const double d2 = pair > 0.0 ? 1.0 - lookup(conn, i, j) / pair : 1.0;
-    // Flat patches (an extension): between two supernodes that are both flat, their widths
-    // say nothing about a part boundary, so the width ratio does not weaken their edge.
-    const double width_ratio =
-        flat[i] && flat[j] ? 1.0 : std::min(width[i], width[j]) / std::max(width[i], width[j]);
-    const double alpha_ij = std::max(params.alpha2 * width_ratio, 1e-300);
-    // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
-    const double crease =
-        concavity_weight > 0.0 && concavity ? concavity_weight * lookup(*concavity, i, j) : 0.0;
-    return std::max(std::exp(-d1 / params.alpha1 - d2 / alpha_ij - crease), kMinWeight);
-  };
-  std::vector<std::uint32_t> tree(l);
-  std::iota(tree.begin(), tree.end(), 0u);
-  auto find = [&](std::uint32_t s) {
-    while (tree[s] != s)
-      s = tree[s] = tree[tree[s]];
-    return s;
-  };
-  for (std::uint32_t i = 0; i < l; ++i) {
-    const std::uint32_t p = sn.parent[i];
-    if (p == kNone)
-      continue;
-    g.edges.push_back({l + std::min(i, p), l + std::max(i, p), similarity(i, p)});
-    tree[find(i)] = find(p);
-  }
-  if (params.adjacency == Adjacency::All) {
-    // Every kNN-adjacent pair not yet joined at a saddle (the saddle edges are parent-child)
-    // whose contact is a large enough share of the smaller total contact.
-    std::vector<double> contact(l, 0.0);
-    for (const auto& [key, value] : conn)
-      if (key.first != key.second) {
-        contact[key.first] += value;
-        contact[key.second] += value;
-      }
-    for (const auto& [key, value] : conn) {
-      const auto [i, j] = key;
-      if (i == j || sn.parent[i] == j || sn.parent[j] == i)
-        continue;
-      if (value < kAdjacentShare * std::min(contact[i], contact[j]))
-        continue;
-      g.edges.push_back({l + i, l + j, similarity(i, j)});
-      tree[find(i)] = find(j);
-    }
-  }
-  if (params.adjacency != Adjacency::Saddles) {
-    // Trees of supernodes that meet at no saddle (the fraction rule of Sec. 4.2 can keep them
-    // apart) would be cut at zero cost: join them where they are most connected point-wise.
-    std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> candidates;
-    for (const auto& [key, value] : conn)
-      if (key.first != key.second)
-        candidates.push_back({value, key});
-    std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
-      return a.first > b.first || (a.first == b.first && a.second < b.second);
-    });
-    for (const auto& [value, key] : candidates) {
-      const std::uint32_t a = find(key.first), b = find(key.second);
-      if (a == b)
-        continue;
-      tree[a] = b;
-      g.edges.push_back({l + key.first, l + key.second, similarity(key.first, key.second)});
-    }
-  }
+  SupernodeEdges edges(stats, conn, params, concavity, l, g);
+  edges.addRepresentativeEdges();
+  edges.addSaddleEdges(sn);
+  if (params.adjacency == Adjacency::All)
+    edges.addAdjacentEdges(sn);
+  if (params.adjacency != Adjacency::Saddles)
+    edges.joinSeparateTrees();
   return g;
 }
 

@@ -133,97 +133,109 @@ private:
   std::vector<std::uint32_t> table_; ///< open addressing: cell ids, kNoCell when free
 };
 
-} // namespace
+/// A candidate bridge: length, p, q (p < q); tuples compare shortest first, then by points.
+using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>;
 
-std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
-                             std::vector<double>* bridge_ratios) {
+/// kNN radius of each vertex: its longest graph edge.
+std::vector<double> knnRadii(const CsrGraph& graph) {
   const std::size_t n = graph.numVertices();
-  if (n < 2 || !(max_gap > 0.0))
-    return 0;
-  std::vector<std::uint32_t> comp;
-  const std::size_t num_comps = connectedComponents(graph, comp);
-  if (num_comps < 2)
-    return 0;
-
-  // kNN radius of each vertex: its longest graph edge.
   std::vector<double> radius(n, 0.0);
   for (std::size_t v = 0; v < n; ++v)
     for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
       radius[v] = std::max(radius[v], static_cast<double>(graph.lengths[e]));
-  std::vector<double> reach(n);
-  for (std::size_t v = 0; v < n; ++v)
-    reach[v] = max_gap * radius[v];
+  return radius;
+}
+
+/// The median of the positive, finite reaches (the grid's cell size); 0 when there is none.
+double medianReach(const std::vector<double>& reach) {
   std::vector<double> positive;
   for (double r : reach)
     if (r > 0.0 && std::isfinite(r))
       positive.push_back(r);
   if (positive.empty())
-    return 0; // every component is a single point or coincident points: no scale to bridge by
+    return 0.0;
   std::nth_element(positive.begin(), positive.begin() + positive.size() / 2, positive.end());
-  const double cell = positive[positive.size() / 2];
+  return positive[positive.size() / 2];
+}
 
-  // Uniform grid of cell size `cell`: the points sorted by cell, each occupied cell a range of
-  // them, found through an open-addressing table on its integer coordinates.
-  CellGrid grid(xyz, n, cell, comp);
-  // A pair lies within both points' reach, so it is found from either side: the points of the
-  // largest component (most of a view or a scan) need not look (ties: the smallest id).
-  std::vector<std::size_t> size(num_comps, 0);
-  for (std::uint32_t c : comp)
-    ++size[c];
-  const auto largest =
-      static_cast<std::uint32_t>(std::max_element(size.begin(), size.end()) - size.begin());
+/// The shortest admissible pair per pair of components: no longer than either point's reach
+/// (each point that looks, looks within its own, so a pair is found from either point).
+class ShortestPairs {
+public:
+  ShortestPairs(const float* xyz, const std::vector<std::uint32_t>& comp,
+                const std::vector<double>& reach, double cell, CellGrid& grid)
+      : xyz_(xyz), comp_(comp), reach_(reach), cell_(cell), grid_(grid) {}
 
-  // The shortest admissible pair per pair of components: no longer than either point's reach
-  // (each point that looks, looks within its own, so a pair is found from either point).
-  using Candidate = std::tuple<double, std::uint32_t, std::uint32_t>; // length, p, q (p < q)
-  std::map<std::pair<std::uint32_t, std::uint32_t>, Candidate> shortest;
-  auto consider = [&](std::uint32_t p, std::uint32_t q) {
-    if (comp[q] == comp[p])
-      return;
-    const double d = distance(xyz, p, q);
-    if (!(d <= std::min(reach[p], reach[q])))
-      return;
-    const auto pair = std::minmax(comp[p], comp[q]);
-    const Candidate c(d, std::min(p, q), std::max(p, q));
-    const auto it = shortest.find(pair);
-    if (it == shortest.end())
-      shortest.emplace(pair, c);
-    else if (c < it->second)
-      it->second = c;
-  };
-  for (std::uint32_t p = 0; p < n; ++p) {
-    if (comp[p] == largest || !(reach[p] > 0.0) || !std::isfinite(reach[p]))
-      continue;
-    const double span = std::ceil(reach[p] / cell);
-    if (std::pow(2.0 * span + 1.0, 3) > static_cast<double>(grid.numCells())) {
+  /// Every pair p can reach, in the cells within its reach.
+  void lookAround(std::uint32_t p) {
+    const double span = std::ceil(reach_[p] / cell_);
+    if (std::pow(2.0 * span + 1.0, 3) > static_cast<double>(grid_.numCells())) {
       // A reach wider than the occupied grid: every occupied cell.
-      for (std::uint32_t i = 0; i < grid.numCells(); ++i)
-        if (grid.component(i) != comp[p])
-          for (std::uint32_t q : grid.points(i))
+      for (std::uint32_t i = 0; i < grid_.numCells(); ++i)
+        if (grid_.component(i) != comp_[p])
+          for (std::uint32_t q : grid_.points(i))
             consider(p, q);
-      continue;
+      return;
     }
     const auto s = static_cast<std::int64_t>(span);
-    const std::int64_t cx = grid.coord(p, 0), cy = grid.coord(p, 1), cz = grid.coord(p, 2);
-    const std::uint32_t own = grid.find(cx, cy, cz);
-    if (grid.component(own) == comp[p] && s <= grid.pureSteps(own))
-      continue; // only p's own component within reach
+    const std::int64_t cx = grid_.coord(p, 0), cy = grid_.coord(p, 1), cz = grid_.coord(p, 2);
+    const std::uint32_t own = grid_.find(cx, cy, cz);
+    if (grid_.component(own) == comp_[p] && s <= grid_.pureSteps(own))
+      return; // only p's own component within reach
     for (std::int64_t x = cx - s; x <= cx + s; ++x)
       for (std::int64_t y = cy - s; y <= cy + s; ++y)
         for (std::int64_t z = cz - s; z <= cz + s; ++z) {
-          const std::uint32_t i = grid.find(x, y, z);
-          if (i == CellGrid::kNoCell || grid.component(i) == comp[p])
+          const std::uint32_t i = grid_.find(x, y, z);
+          if (i == CellGrid::kNoCell || grid_.component(i) == comp_[p])
             continue;
-          for (std::uint32_t q : grid.points(i))
+          for (std::uint32_t q : grid_.points(i))
             consider(p, q);
         }
   }
-  std::vector<Candidate> candidates;
-  for (const auto& [pair, c] : shortest)
-    candidates.push_back(c);
-  std::sort(candidates.begin(), candidates.end());
 
-  // Kruskal over the components.
+  /// The pairs found, shortest first.
+  std::vector<Candidate> sorted() const {
+    std::vector<Candidate> candidates;
+    for (const auto& [pair, c] : shortest_)
+      candidates.push_back(c);
+    std::sort(candidates.begin(), candidates.end());
+    return candidates;
+  }
+
+private:
+  void consider(std::uint32_t p, std::uint32_t q) {
+    if (comp_[q] == comp_[p])
+      return;
+    const double d = distance(xyz_, p, q);
+    if (!(d <= std::min(reach_[p], reach_[q])))
+      return;
+    const auto pair = std::minmax(comp_[p], comp_[q]);
+    const Candidate c(d, std::min(p, q), std::max(p, q));
+    const auto it = shortest_.find(pair);
+    if (it == shortest_.end())
+      shortest_.emplace(pair, c);
+    else if (c < it->second)
+      it->second = c;
+  }
+
+  const float* xyz_;
+  const std::vector<std::uint32_t>& comp_;
+  const std::vector<double>& reach_;
+  const double cell_;
+  CellGrid& grid_;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, Candidate> shortest_;
+};
+
+/// Bridges chosen by Kruskal over the components: candidates shortest first, each joining two
+/// components not yet joined.
+struct Bridges {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> ends;
+  std::vector<float> length;
+};
+
+Bridges kruskalBridges(const std::vector<Candidate>& candidates,
+                       const std::vector<std::uint32_t>& comp, std::size_t num_comps,
+                       const std::vector<double>& radius, std::vector<double>* bridge_ratios) {
   std::vector<std::uint32_t> parent(num_comps);
   std::iota(parent.begin(), parent.end(), 0u);
   auto find = [&](std::uint32_t c) {
@@ -231,26 +243,27 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
       c = parent[c] = parent[parent[c]];
     return c;
   };
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> bridges;
-  std::vector<float> bridge_length;
+  Bridges out;
   for (const auto& [d, p, q] : candidates) {
     const std::uint32_t a = find(comp[p]), b = find(comp[q]);
     if (a == b)
       continue;
     parent[a] = b;
-    bridges.emplace_back(p, q);
-    bridge_length.push_back(static_cast<float>(d));
+    out.ends.emplace_back(p, q);
+    out.length.push_back(static_cast<float>(d));
     if (bridge_ratios)
       bridge_ratios->push_back(d / std::min(radius[p], radius[q]));
   }
-  if (bridges.empty())
-    return 0;
+  return out;
+}
 
-  // Rebuild the CSR rows with the bridges (both directions), rows sorted by target.
+/// The graph with the bridges as edges (both directions), rows sorted by target.
+CsrGraph withBridges(const CsrGraph& graph, const Bridges& bridges) {
+  const std::size_t n = graph.numVertices();
   std::vector<std::vector<std::pair<std::uint32_t, float>>> extra(n);
-  for (std::size_t i = 0; i < bridges.size(); ++i) {
-    extra[bridges[i].first].emplace_back(bridges[i].second, bridge_length[i]);
-    extra[bridges[i].second].emplace_back(bridges[i].first, bridge_length[i]);
+  for (std::size_t i = 0; i < bridges.ends.size(); ++i) {
+    extra[bridges.ends[i].first].emplace_back(bridges.ends[i].second, bridges.length[i]);
+    extra[bridges.ends[i].second].emplace_back(bridges.ends[i].first, bridges.length[i]);
   }
   CsrGraph out;
   out.offsets.assign(n + 1, 0);
@@ -270,8 +283,49 @@ std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
       out.lengths.push_back(len);
     }
   }
-  graph = std::move(out);
-  return bridges.size();
+  return out;
+}
+
+} // namespace
+
+std::size_t bridgeComponents(CsrGraph& graph, const float* xyz, double max_gap,
+                             std::vector<double>* bridge_ratios) {
+  const std::size_t n = graph.numVertices();
+  if (n < 2 || !(max_gap > 0.0))
+    return 0;
+  std::vector<std::uint32_t> comp;
+  const std::size_t num_comps = connectedComponents(graph, comp);
+  if (num_comps < 2)
+    return 0;
+
+  const std::vector<double> radius = knnRadii(graph);
+  std::vector<double> reach(n);
+  for (std::size_t v = 0; v < n; ++v)
+    reach[v] = max_gap * radius[v];
+  const double cell = medianReach(reach);
+  if (cell == 0.0)
+    return 0; // every component is a single point or coincident points: no scale to bridge by
+
+  // Uniform grid of cell size `cell`: the points sorted by cell, each occupied cell a range of
+  // them, found through an open-addressing table on its integer coordinates.
+  CellGrid grid(xyz, n, cell, comp);
+  // A pair lies within both points' reach, so it is found from either side: the points of the
+  // largest component (most of a view or a scan) need not look (ties: the smallest id).
+  std::vector<std::size_t> size(num_comps, 0);
+  for (std::uint32_t c : comp)
+    ++size[c];
+  const auto largest =
+      static_cast<std::uint32_t>(std::max_element(size.begin(), size.end()) - size.begin());
+  ShortestPairs pairs(xyz, comp, reach, cell, grid);
+  for (std::uint32_t p = 0; p < n; ++p)
+    if (comp[p] != largest && reach[p] > 0.0 && std::isfinite(reach[p]))
+      pairs.lookAround(p);
+
+  const Bridges bridges = kruskalBridges(pairs.sorted(), comp, num_comps, radius, bridge_ratios);
+  if (bridges.ends.empty())
+    return 0;
+  graph = withBridges(graph, bridges);
+  return bridges.ends.size();
 }
 
 } // namespace pcl_ncut_seg

@@ -12,13 +12,57 @@ float distance(const float* xyz, std::size_t a, std::size_t b) {
   const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
-} // namespace
 
-CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
-                                std::size_t k, int num_threads) {
+/// The kNN lists and the rule that decides which of their entries become edges. Per kNN
+/// entry p -> q, put says: bit 0, q goes into p's row; bit 1, p goes into q's row too.
+struct KnnEntries {
+  const float* xyz;
+  std::size_t n;
+  const std::uint32_t* knn;
+  std::size_t k;
+  int num_threads;
+  std::vector<float> radius;     ///< per point, the distance to the farthest of its k nearest
+  std::vector<std::uint8_t> put; ///< per kNN entry, see above
+
+  /// p -> q is used unless it is over kFarEdgeRatio times q's radius: a lone far point (an
+  /// outlier) would otherwise reach into a surface over a distance no surface edge has, and
+  /// its centrality and area would dominate the refinement thresholds (Sec. 4.3).
+  static constexpr float kFarEdgeRatio = 10.0f;
+
+  void measureRadii();
+  void markUsed(std::uint32_t* reverse_count);
+  std::uint32_t ownCount(std::size_t p) const {
+    std::uint32_t c = 0;
+    for (std::size_t j = 0; j < k; ++j)
+      c += put[p * k + j] != 0;
+    return c;
+  }
+  void fillRows(CsrGraph& g);
+
+private:
+  /// The test on p -> q of length d (the same length both ways, bit for bit).
+  bool usedAt(std::uint32_t q, float d) const {
+    return radius[q] == 0.0f || d <= kFarEdgeRatio * radius[q];
+  }
+  // Both scans without an early exit: where the match lies is unpredictable, and a branch per
+  // entry cost more than the entries after it.
+  bool listsUsed(std::uint32_t q, std::size_t p, float d) const {
+    bool lists = false;
+    for (std::size_t j = 0; j < k; ++j)
+      lists |= knn[q * k + j] == p;
+    return lists && usedAt(static_cast<std::uint32_t>(p), d);
+  }
+  bool isDuplicateInRow(std::size_t p, std::size_t j) const {
+    bool duplicate = false;
+    for (std::size_t i = 0; i < j; ++i)
+      duplicate |= knn[p * k + i] == knn[p * k + j];
+    return duplicate;
+  }
+};
+
+void KnnEntries::measureRadii() {
   const auto rows = static_cast<std::ptrdiff_t>(n);
-  // The kNN radius of each point: the distance to the farthest of its k nearest.
-  std::vector<float> radius(n, 0.0f);
+  radius.assign(n, 0.0f);
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto p = static_cast<std::size_t>(r);
@@ -28,39 +72,15 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
         radius[p] = std::max(radius[p], distance(xyz, p, q));
     }
   }
-  // p -> q is used unless it is over kFarEdgeRatio times q's radius: a lone far point (an
-  // outlier) would otherwise reach into a surface over a distance no surface edge has, and
-  // its centrality and area would dominate the refinement thresholds (Sec. 4.3).
-  const float kFarEdgeRatio = 10.0f;
-  // The test on p -> q of length d (the same length both ways, bit for bit).
-  auto usedAt = [&](std::uint32_t q, float d) {
-    return radius[q] == 0.0f || d <= kFarEdgeRatio * radius[q];
-  };
-  // Union of both directions. A used p -> q puts q in p's row, and p in q's row unless q -> p
-  // is also a used kNN entry (then q's own entry adds it): rows hold no duplicate without a
-  // sort-and-unique pass over 2nk entries, so memory stays at the size of the result.
-  // Both scans without an early exit: where the match lies is unpredictable, and a branch per
-  // entry cost more than the entries after it.
-  auto listsUsed = [&](std::uint32_t q, std::size_t p, float d) {
-    bool lists = false;
-    for (std::size_t j = 0; j < k; ++j)
-      lists |= knn[q * k + j] == p;
-    return lists && usedAt(static_cast<std::uint32_t>(p), d);
-  };
-  auto isDuplicateInRow = [&](std::size_t p, std::size_t j) {
-    bool duplicate = false;
-    for (std::size_t i = 0; i < j; ++i)
-      duplicate |= knn[p * k + i] == knn[p * k + j];
-    return duplicate;
-  };
-  // Per kNN entry p -> q: bit 0, q goes into p's row; bit 1, p goes into q's row too.
-  std::vector<std::uint8_t> put(n * k, 0);
-  // Rows are filled in any order by the threads and sorted afterwards, so the graph is the
-  // same for any number of threads. A row starts with its own kNN entries (written by the
-  // thread that owns it), then holds the reverse ones (counted and placed atomically).
-  CsrGraph g;
-  g.offsets.assign(n + 1, 0);
-  std::uint32_t* reverse_count = g.offsets.data() + 1;
+}
+
+/// Union of both directions. A used p -> q puts q in p's row, and p in q's row unless q -> p
+/// is also a used kNN entry (then q's own entry adds it): rows hold no duplicate without a
+/// sort-and-unique pass over 2nk entries, so memory stays at the size of the result. The
+/// reverse entries are counted per row (atomically).
+void KnnEntries::markUsed(std::uint32_t* reverse_count) {
+  const auto rows = static_cast<std::ptrdiff_t>(n);
+  put.assign(n * k, 0);
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto p = static_cast<std::size_t>(r);
@@ -79,14 +99,12 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
       }
     }
   }
-  auto ownCount = [&](std::size_t p) {
-    std::uint32_t c = 0;
-    for (std::size_t j = 0; j < k; ++j)
-      c += put[p * k + j] != 0;
-    return c;
-  };
-  for (std::size_t v = 0; v < n; ++v)
-    g.offsets[v + 1] += g.offsets[v] + ownCount(v);
+}
+
+/// A row starts with its own kNN entries (written by the thread that owns it), then holds the
+/// reverse ones (placed atomically, in any order).
+void KnnEntries::fillRows(CsrGraph& g) {
+  const auto rows = static_cast<std::ptrdiff_t>(n);
   g.targets.resize(g.offsets[n]);
   // fill[v]: where v's next reverse entry goes.
   std::vector<std::uint32_t> fill(n);
@@ -110,14 +128,18 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
       }
     }
   }
-  fill = std::vector<std::uint32_t>();
-  put = std::vector<std::uint8_t>();
+}
+
+/// Each row sorted by target (so the graph is the same for any number of threads) and its
+/// edges' lengths measured. Rows are short (k and a few more): an insertion sort in place,
+/// without the library sort's block moves; long rows (a hub) go to std::sort. Targets in a row
+/// are distinct.
+void sortRowsAndMeasure(CsrGraph& g, const float* xyz, int num_threads) {
+  const auto rows = static_cast<std::ptrdiff_t>(g.numVertices());
   g.lengths.resize(g.targets.size());
 #pragma omp parallel for num_threads(num_threads) schedule(static)
   for (std::ptrdiff_t r = 0; r < rows; ++r) {
     const auto v = static_cast<std::size_t>(r);
-    // Rows are short (k and a few more): an insertion sort in place, without the library
-    // sort's block moves; long rows (a hub) go to std::sort. Targets in a row are distinct.
     std::uint32_t* row = g.targets.data() + g.offsets[v];
     const std::uint32_t degree = g.offsets[v + 1] - g.offsets[v];
     if (degree > 32) {
@@ -134,6 +156,21 @@ CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint
     for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
       g.lengths[e] = distance(xyz, v, g.targets[e]);
   }
+}
+} // namespace
+
+CsrGraph buildSymmetricKnnGraph(const float* xyz, std::size_t n, const std::uint32_t* knn,
+                                std::size_t k, int num_threads) {
+  KnnEntries entries{xyz, n, knn, k, num_threads, {}, {}};
+  entries.measureRadii();
+  CsrGraph g;
+  g.offsets.assign(n + 1, 0);
+  entries.markUsed(g.offsets.data() + 1); // reverse entries counted into offsets[v + 1]
+  for (std::size_t v = 0; v < n; ++v)
+    g.offsets[v + 1] += g.offsets[v] + entries.ownCount(v);
+  entries.fillRows(g);
+  entries.put = std::vector<std::uint8_t>(); // the marks are no longer needed
+  sortRowsAndMeasure(g, xyz, num_threads);
   return g;
 }
 

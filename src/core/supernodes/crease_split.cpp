@@ -40,8 +40,9 @@ struct LevelCut {
   std::size_t end = 0;
 };
 
-/// splitAtCreases() in steps over its state: the supernodes as they are split, each one's
-/// points in descending f, and the cuts found for them.
+/// splitAtCreases(): takes the supernodes to test from a queue, sweeps each one's level cuts of
+/// f for the most concave crease, and splits it there (its top up into its children, or off as
+/// a supernode of its own) until no cut qualifies.
 struct CreaseSplitter {
   const CsrGraph& graph;
   const float* xyz;

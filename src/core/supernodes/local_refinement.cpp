@@ -99,8 +99,9 @@ struct Work {
   }
 };
 
-/// refineSupernodes() in steps (Sec. 4.3) over the working copy of the supernodes, with the
-/// thresholds taken before refinement and the merge-up's scratch arrays.
+/// Sec. 4.3's local refinement (refineSupernodes()): insignificant supernodes, small or skinny
+/// by the thresholds taken before refinement, are merged up, merged down, cut into connected
+/// regions and joined to their neighbours, in rounds over the working copy of the supernodes.
 struct Refiner {
   const CsrGraph& graph;
   const std::vector<float>& f;
