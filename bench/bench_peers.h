@@ -3,8 +3,8 @@
  */
 #pragma once
 
-#include "depth_view_pcl.h"
 #include "psb_peers.h"
+#include <surfaces/depth_view_pcl.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>

@@ -13,11 +13,11 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
-#include "build_info.h"
 #include "child_run.h"
-#include "mesh_sampling.h"
 #include "peak_memory.h"
 #include "timing.h"
+#include <cli/build_info.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <malloc.h>
 #include <unistd.h>

@@ -11,9 +11,9 @@
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "mesh_sampling.h"
 #include "peak_memory.h"
 #include "timing.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <cstdio>
 #include <cstdlib>

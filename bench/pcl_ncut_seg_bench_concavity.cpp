@@ -12,9 +12,9 @@
 #include "core/pipeline/analysis_stages.h"
 #include "core/pipeline/pipeline.h"
 
-#include "mesh_sampling.h"
 #include "peak_memory.h"
 #include "timing.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>

@@ -11,8 +11,8 @@
 #include "core/graph/csr_graph.h"
 #include "core/graph/shortest_paths.h"
 
-#include "mesh_sampling.h"
 #include "timing.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>

@@ -21,9 +21,9 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "support/cad_shapes.h"
-#include "support/metrics.h"
-#include "support/shapes.h"
+#include <shapes/cad_shapes.h>
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 
 #include <algorithm>
 #include <cstdio>

@@ -16,9 +16,9 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "mesh_sampling.h"
-#include "support/metrics.h"
 #include "timing.h"
+#include <shapes/metrics.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <algorithm>
 #include <cstdio>

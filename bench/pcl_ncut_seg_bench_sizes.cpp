@@ -17,13 +17,13 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
-#include "build_info.h"
 #include "child_run.h"
-#include "depth_view_pcl.h"
-#include "mesh_sampling.h"
 #include "peak_memory.h"
 #include "psb_peers.h"
 #include "timing.h"
+#include <cli/build_info.h>
+#include <surfaces/depth_view_pcl.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>

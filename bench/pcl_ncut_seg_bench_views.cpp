@@ -2,7 +2,7 @@
  * pcl_ncut_seg_bench_views: how long a depth camera's frame takes, beside PCL's supervoxels +
  * LCCP on the same cloud, in one run.
  *
- * Two organized 640 x 480 clouds rendered by tools/depth_view.h (noise 1.5 mm at 1 m):
+ * Two organized 640 x 480 clouds rendered by kit/surfaces/depth_view.h (noise 1.5 mm at 1 m):
  *  (a) a tabletop object alone: the bunny scaled to a 0.3 m diagonal, seen from a seeded
  *      direction at the distance that gives it about 20,000 valid pixels;
  *  (b) a full frame: the same bunny standing on a table that fills the whole image, seen from
@@ -18,10 +18,10 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "bench_peers.h"
-#include "build_info.h"
-#include "depth_view_pcl.h"
 #include "psb_peers.h"
 #include "timing.h"
+#include <cli/build_info.h>
+#include <surfaces/depth_view_pcl.h>
 
 #include <pcl/console/print.h>
 #include <pcl/search/organized.h>

@@ -4,8 +4,8 @@
  */
 #pragma once
 
-#include "mesh_sampling.h"
 #include "psb_metrics.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/PointIndices.h>
 

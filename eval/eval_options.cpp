@@ -1,6 +1,6 @@
 #include "eval_options.h"
 
-#include "cli/algorithm_flags.h"
+#include <cli/algorithm_flags.h>
 
 #include <pcl/console/print.h>
 

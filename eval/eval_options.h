@@ -5,10 +5,10 @@
  */
 #pragma once
 
-#include "cli/flags.h"
-#include "depth_view.h"
 #include "eval_sampling.h"
 #include "psb_peers.h"
+#include <cli/flags.h>
+#include <surfaces/depth_view.h>
 
 #include <pcl_ncut_seg/parameters.h>
 

@@ -6,7 +6,7 @@
  */
 #pragma once
 
-#include "mesh_sampling.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <cstddef>
 #include <cstdint>

@@ -1,10 +1,10 @@
 #include "eval_views.h"
 
-#include "cli/algorithm_flags.h"
-#include "depth_view_pcl.h"
 #include "eval_sampling.h"
 #include "psb_peers.h"
 #include "view_scoring.h"
+#include <cli/algorithm_flags.h>
+#include <surfaces/depth_view_pcl.h>
 
 #include <pcl/console/print.h>
 #include <pcl/filters/voxel_grid.h>

@@ -11,20 +11,20 @@
  * over models. Writes <out_dir>/models.csv, categories.csv and tables.md (and spread.csv, the
  * spread over the draws, with -draws).
  */
-#include "cli/algorithm_flags.h"
-#include "cli/build_info.h"
-#include "cli/console.h"
-#include "cli/flags.h"
-#include "cli/output.h"
 #include "eval_model.h"
 #include "eval_options.h"
 #include "eval_report.h"
 #include "eval_sampling.h"
 #include "eval_spread.h"
 #include "eval_views.h"
-#include "mesh_sampling.h"
 #include "psb_metrics.h"
 #include "psb_peers.h"
+#include <cli/algorithm_flags.h>
+#include <cli/build_info.h>
+#include <cli/console.h>
+#include <cli/flags.h>
+#include <cli/output.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/console/print.h>
 

@@ -11,7 +11,7 @@
  * builds and runs it.
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
-#include <support/shapes.h>
+#include <shapes/shapes.h>
 
 #include <malloc.h>
 #include <unistd.h>

@@ -7,8 +7,8 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"
-#include "support/metrics.h"
-#include "support/shapes.h"
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 
 #include <gtest/gtest.h>
 

@@ -6,11 +6,11 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "support/cad_shapes.h"
-#include "support/metrics.h"
-#include "support/shapes.h"
+#include <shapes/cad_shapes.h>
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 
-#include "mesh_sampling.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>

@@ -6,7 +6,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"
-#include "support/shapes.h"
+#include <shapes/shapes.h>
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 /*
- * Depth-camera views of a mesh (tools/depth_view.h): the ray casting against brute force, the
- * organized layout and its NaNs, the camera convention, the range noise's growth with depth,
+ * Depth-camera views of a mesh (kit/surfaces/depth_view.h): the ray casting against brute force,
+ * the organized layout and its NaNs, the camera convention, the range noise's growth with depth,
  * the sensor pose; and the scoring of a view on the faces it sees (eval/view_scoring.h).
  */
-#include "depth_view.h"
-#include "depth_view_pcl.h"
 #include "view_scoring.h"
+#include <surfaces/depth_view.h>
+#include <surfaces/depth_view_pcl.h>
 
 #include <gtest/gtest.h>
 

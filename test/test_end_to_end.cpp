@@ -5,9 +5,9 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "support/metrics.h"
 #include "support/partition.h"
-#include "support/shapes.h"
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 
 #include <pcl/common/point_tests.h>
 #include <pcl/search/kdtree.h>

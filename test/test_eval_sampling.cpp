@@ -6,8 +6,8 @@
  */
 #include "eval_sampling.h"
 #include "eval_spread.h"
-#include "mesh_sampling.h"
 #include "psb_metrics.h"
+#include <surfaces/mesh_sampling.h>
 
 #include <gtest/gtest.h>
 

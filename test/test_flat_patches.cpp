@@ -5,7 +5,7 @@
 #include "core/cut/supernode_graph.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "mesh_sampling.h"
+#include <surfaces/mesh_sampling.h>
 
 #include "support/graphs.h"
 

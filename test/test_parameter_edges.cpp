@@ -6,12 +6,12 @@
  */
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 #include <support/extract_capturing.h>
 #include <support/graphs.h>
-#include <support/metrics.h>
 #include <support/parameter_values.h>
 #include <support/partition.h>
-#include <support/shapes.h>
 
 #include <pcl/common/point_tests.h>
 

@@ -5,8 +5,8 @@
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "support/shapes.h"
 #include "support/text_files.h"
+#include <shapes/shapes.h>
 
 #include <gtest/gtest.h>
 

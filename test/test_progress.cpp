@@ -4,8 +4,8 @@
  */
 #include "core/centrality/centrality.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+#include <shapes/shapes.h>
 #include <support/graphs.h>
-#include <support/shapes.h>
 
 #include <gtest/gtest.h>
 

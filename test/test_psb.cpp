@@ -9,8 +9,8 @@
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "mesh_sampling.h"
-#include "support/metrics.h"
+#include <shapes/metrics.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/io/pcd_io.h>
 

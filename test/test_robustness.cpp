@@ -7,11 +7,11 @@
  * the edges of their ranges, and determinism: test_parameter_edges.cpp.
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 #include <support/extract_capturing.h>
 #include <support/graphs.h>
-#include <support/metrics.h>
 #include <support/partition.h>
-#include <support/shapes.h>
 
 #include <pcl/common/point_tests.h>
 

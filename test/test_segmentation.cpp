@@ -1,7 +1,7 @@
 // The PCL front end: input checks, parameters, the two stages, outputs.
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
-#include <support/metrics.h>
-#include <support/shapes.h>
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 
 #include <pcl/common/point_tests.h>
 #include <pcl/search/kdtree.h>

@@ -8,10 +8,10 @@
 #include "core/graph/shortest_paths.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "mesh_sampling.h"
 #include "support/graphs.h"
 #include "support/knn_graph.h"
-#include "support/shapes.h"
+#include <shapes/shapes.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/io/pcd_io.h>
 

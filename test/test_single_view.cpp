@@ -8,7 +8,7 @@
 #include "core/graph/knn.h"
 #include "core/views/single_view.h"
 
-#include "support/shapes.h"
+#include <shapes/shapes.h>
 
 #include <gtest/gtest.h>
 

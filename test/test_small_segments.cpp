@@ -9,7 +9,7 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"
-#include "support/shapes.h"
+#include <shapes/shapes.h>
 
 #include <gtest/gtest.h>
 

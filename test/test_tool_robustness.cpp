@@ -8,9 +8,9 @@
  */
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
-#include <support/metrics.h>
+#include <shapes/metrics.h>
+#include <shapes/shapes.h>
 #include <support/parameter_values.h>
-#include <support/shapes.h>
 #include <support/text_files.h>
 
 #include <pcl/common/point_tests.h>

@@ -8,7 +8,7 @@
 #include "core/views/view_origin.h"
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
-#include "support/shapes.h"
+#include <shapes/shapes.h>
 
 #include <gtest/gtest.h>
 

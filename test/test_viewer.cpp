@@ -9,8 +9,8 @@
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "png_image.h"
-#include "support/shapes.h"
 #include "support/text_files.h"
+#include <shapes/shapes.h>
 
 #include <pcl/io/pcd_io.h>
 

@@ -3,8 +3,8 @@
  * surface, one point per face, or what a depth camera sees of it (-view, depth_view.h), for
  * pcl_ncut_seg and the tests.
  */
-#include "depth_view_pcl.h"
-#include "mesh_sampling.h"
+#include <surfaces/depth_view_pcl.h>
+#include <surfaces/mesh_sampling.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>

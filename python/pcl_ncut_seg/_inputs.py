@@ -1,4 +1,4 @@
-"""The points of a file as the pcl_ncut_seg tool reads them (tools/cli/input.cpp): a point
+"""The points of a file as the pcl_ncut_seg tool reads them (kit/cli/input.cpp): a point
 cloud (.pcd, .ply), a mesh as one point per face centroid (.off, .obj, .ply with faces), and
 numpy's .npy arrays ((N, 3) or an organized (H, W, 3)). The batch front end reads its inputs
 here, so that its labels are the tool's."""

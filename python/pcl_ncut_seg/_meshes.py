@@ -1,5 +1,5 @@
 """OFF and OBJ meshes without PCL, read as the pcl_ncut_seg tool reads them
-(tools/mesh_sampling.cpp), and the tool's points of a mesh: one per face, its area-weighted
+(kit/surfaces/mesh_sampling.cpp), and the tool's points of a mesh: one per face, its area-weighted
 centroid, computed in the same order of operations so that the points are the same floats."""
 import numpy as np
 

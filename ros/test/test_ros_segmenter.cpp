@@ -5,7 +5,7 @@
 #include <pcl_ncut_seg_ros/ros_parameters.h>
 
 #include <pcl_ncut_seg/parameter_table.h>
-#include <support/shapes.h>
+#include <shapes/shapes.h>
 
 #include <pcl_conversions/pcl_conversions.h>
 

@@ -1,4 +1,4 @@
-#include "mesh_sampling.h"
+#include "surfaces/mesh_sampling.h"
 
 #include <algorithm>
 #include <array>

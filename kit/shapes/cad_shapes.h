@@ -1,5 +1,5 @@
 /*
- * pcl_ncut_seg tests: generated CAD parts with known faces (Sec. 7).
+ * pcl_ncut_seg kit, shared by the tests and bench/: generated CAD parts with known faces (Sec. 7).
  *
  * Each part is a closed polyhedron (or a cylinder) whose faces are labelled 0 .. num_parts-1.
  * Points are drawn uniformly by area, then optionally displaced by isotropic Gaussian noise.
@@ -8,7 +8,7 @@
  */
 #pragma once
 
-#include "support/shapes.h"
+#include "shapes/shapes.h"
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>

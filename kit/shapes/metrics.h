@@ -1,5 +1,5 @@
 /*
- * pcl_ncut_seg tests: comparing segmentations.
+ * pcl_ncut_seg kit, shared by the tests and bench/: comparing segmentations.
  */
 #pragma once
 

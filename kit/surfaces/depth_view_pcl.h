@@ -4,7 +4,7 @@
  */
 #pragma once
 
-#include "depth_view.h"
+#include "surfaces/depth_view.h"
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>

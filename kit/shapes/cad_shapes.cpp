@@ -1,4 +1,4 @@
-#include "support/cad_shapes.h"
+#include "shapes/cad_shapes.h"
 
 #include <Eigen/Core>
 

@@ -1,4 +1,4 @@
-#include "support/metrics.h"
+#include "shapes/metrics.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -2,7 +2,7 @@
 
 #include "cli/console.h"
 #include "cli/paths.h"
-#include "mesh_sampling.h"
+#include "surfaces/mesh_sampling.h"
 
 #include <pcl/PolygonMesh.h>
 #include <pcl/conversions.h>

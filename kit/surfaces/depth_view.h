@@ -18,7 +18,7 @@
  */
 #pragma once
 
-#include "mesh_sampling.h"
+#include "surfaces/mesh_sampling.h"
 
 #include <array>
 #include <cstddef>

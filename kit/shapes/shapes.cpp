@@ -1,4 +1,4 @@
-#include "support/shapes.h"
+#include "shapes/shapes.h"
 
 #include <pcl/common/point_tests.h>
 #include <pcl/search/kdtree.h>

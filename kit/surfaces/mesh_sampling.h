@@ -1,6 +1,7 @@
 /*
  * pcl_ncut_seg: reading OFF meshes and Princeton benchmark .seg files, and sampling points on
- * a mesh's surface. Plain C++ (no PCL) so that the tools and the tests share one definition.
+ * a mesh's surface. Plain C++ (no PCL) so that the tools, the evaluator, the benchmarks and the
+ * tests share one definition.
  */
 #pragma once
 

@@ -1,4 +1,4 @@
-#include "depth_view.h"
+#include "surfaces/depth_view.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 /*
- * pcl_ncut_seg tests: generated point clouds with known parts.
+ * pcl_ncut_seg kit, shared by the tests and bench/: generated point clouds with known parts.
  *
  * Each shape is a union of simple primitives (ellipsoids, spheres, capsules). Points are
  * drawn uniformly by area over the primitives' surfaces and a point inside another primitive is
