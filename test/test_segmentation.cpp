@@ -1,4 +1,5 @@
 // The PCL front end: input checks, parameters, the two stages, outputs.
+#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <support/metrics.h>
 #include <support/shapes.h>

@@ -213,8 +213,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
              n, k, k_wanted);
   pcl_ncut_seg::PointSegmenter::NeighbourSearch search;
   if (search_) // else FLANN's kd-tree as pcl::search::KdTree builds it
-    search = [this](std::size_t k, int threads, std::uint32_t* knn) {
-      searchNeighbours(point_index_, k, threads, knn);
+    search = [this](std::size_t neighbours, int threads, std::uint32_t* knn) {
+      searchNeighbours(point_index_, neighbours, threads, knn);
     };
   pcl_ncut_seg::PointSegmenter::CadNormals normals;
   if (params_.cad.enabled)
