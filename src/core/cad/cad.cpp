@@ -441,8 +441,8 @@ CadGraph cadGraph(const CsrGraph& graph, const float* normals, float ridge_angle
   return out;
 }
 
-void cadFaces(Analysis& a, const CsrGraph& graph, const float* xyz,
-              const std::vector<bool>& ridge, float area_fraction) {
+void cadFaces(Analysis& a, const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
+              float area_fraction) {
   a.cad = true;
   // Faces end at ridges: no supernode crosses one (Sec. 7, "ridges to feature boundaries").
   const std::size_t min_points =
