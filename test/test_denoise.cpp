@@ -157,7 +157,7 @@ CentralityPair centralityBeforeAndAfter(const std::vector<float>& xyz, const Par
   points.knn = knn;
   points.k = k;
   points.rim = std::move(rim);
-  out.analysed = analyze(points, params, times).centrality.f;
+  out.analysed = analyze(points, params, times).starts.at(0).centrality.f;
   std::vector<float> moved = xyz;
   NoiseTest noise;
   const CsrGraph graph = graphStage(moved, knn.data(), k, params.graph, true, 1, &noise);

@@ -255,9 +255,9 @@ TEST(CorePipeline, AnalysisServesACutOnlyWithWhatItMeasured) {
   Analysis a;
   EXPECT_TRUE(serves(a, p));
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the contact concavity";
-  a.has_concavity = a.has_crease = true;
+  a.measured.concavity = a.measured.crease = true;
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the rim's bends";
-  a.has_rim_planes = true;
+  a.measured.rim = true;
   EXPECT_TRUE(serves(a, Parameters()));
   Parameters cad;
   cad.cad.enabled = true;

@@ -42,8 +42,8 @@ Labels labelsOf(const std::vector<pcl::PointIndices>& segments, std::size_t n) {
 /// Per input point, its segment when only the given start of the kept analysis is cut.
 Labels cutOneStart(const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& seg, std::size_t start,
                    std::size_t n) {
-  Analysis one = startAnalysis(*seg.getAnalysis(), start);
-  one.other_starts.clear();
+  Analyses one;
+  one.starts.push_back(seg.getAnalyses()->starts.at(start));
   PhaseTimes times;
   const CutResult r = cut(one, seg.getParameters(), times);
   Labels label(n, kNone);
@@ -138,37 +138,39 @@ TEST(Starts, TheResultIsTheMedoidOfTheStartsSegmentations) {
   std::vector<pcl::PointIndices> segments;
   seg.extract(segments);
   ASSERT_GT(segments.size(), 1u);
-  const Analysis& analysis = *seg.getAnalysis();
+  const Analyses& analyses = *seg.getAnalyses();
+  const Analysis& analysis = analyses.starts[0];
+  EXPECT_EQ(seg.getAnalysis(), &analysis);
   // An analysis per start with samples of its own, weighted by the starts that have them.
-  const std::size_t distinct = analysis.other_starts.size() + 1;
+  const std::size_t distinct = analyses.starts.size();
   ASSERT_GT(distinct, 1u);
-  ASSERT_EQ(analysis.start_weights.size(), distinct);
+  ASSERT_EQ(analyses.weights.size(), distinct);
   std::uint32_t total = 0;
-  for (std::uint32_t w : analysis.start_weights)
+  for (std::uint32_t w : analyses.weights)
     total += w;
   EXPECT_EQ(total, 5u);
   // The starts differ in their samples only: they share one kNN graph, not copies of it.
   ASSERT_NE(analysis.graph, nullptr);
   for (std::size_t s = 1; s < distinct; ++s)
-    EXPECT_EQ(startAnalysis(analysis, s).graph.get(), analysis.graph.get());
+    EXPECT_EQ(analyses.starts[s].graph.get(), analysis.graph.get());
   std::vector<Labels> each;
   for (std::size_t s = 0; s < distinct; ++s)
     each.push_back(cutOneStart(seg, s, n));
   std::vector<const Labels*> partitions;
   for (const Labels& l : each)
     partitions.push_back(&l);
-  const std::size_t medoid = medoidPartition(partitions, analysis.start_weights);
+  const std::size_t medoid = medoidPartition(partitions, analyses.weights);
   EXPECT_EQ(labelsOf(segments, n), each[medoid]);
   // The intermediate results are the medoid start's.
   const std::vector<float> f = seg.getCentrality();
-  const Analysis& shown = startAnalysis(analysis, medoid);
+  const Analysis& shown = analyses.starts[medoid];
   for (std::size_t v = 0; v < shown.centrality.f.size(); ++v)
     ASSERT_EQ(f[seg.getAnalysedIndices()[v]], shown.centrality.f[v]);
 
   // One start is start 0 alone: the same segments as start 0 of several.
   seg.setStarts(1);
   seg.extract(segments);
-  EXPECT_TRUE(seg.getAnalysis()->other_starts.empty());
+  EXPECT_EQ(seg.getAnalyses()->starts.size(), 1u);
   EXPECT_EQ(labelsOf(segments, n), each[0]);
 }
 
@@ -195,8 +197,8 @@ TEST(Starts, AnOpenViewHasOneStart) {
   seg.extract(segments);
   ASSERT_FALSE(segments.empty());
   EXPECT_FALSE(seg.getAnalysis()->rim.empty());
-  EXPECT_TRUE(seg.getAnalysis()->other_starts.empty());
-  EXPECT_TRUE(seg.getAnalysis()->start_weights.empty());
+  EXPECT_EQ(seg.getAnalyses()->starts.size(), 1u);
+  EXPECT_EQ(seg.getAnalyses()->weights, std::vector<std::uint32_t>{1u});
 }
 
 TEST(Starts, SetterKeepsTheOldValueOnABadOne) {

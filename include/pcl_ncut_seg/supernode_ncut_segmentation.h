@@ -14,8 +14,9 @@
 #include <pcl/point_types.h>
 #include <pcl/search/search.h>
 
-#include "core/pipeline/pipeline.h"
+#include <pcl_ncut_seg/analysis_report.h>
 #include <pcl_ncut_seg/parameters.h>
+#include <pcl_ncut_seg/segment_points.h>
 
 #include <functional>
 #include <memory>
@@ -260,14 +261,21 @@ public:
    * sensor_origin_ less the points' centroid, or one read off the points when the points are
    * no view from sensor_origin_), and how many points lie on the rim. */
   pcl_ncut_seg::ViewTest getViewTest() const;
-  /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2). */
-  const pcl_ncut_seg::Hierarchy& getHierarchy() const { return result_.hierarchy; }
-  /** \brief The supernode graph G_s (Sec. 5.1). */
-  const pcl_ncut_seg::WeightedGraph& getSupernodeGraph() const { return result_.graph; }
+  /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2); its type is the
+   * core's (core/cut/normalized_cut.h, in the source tree). */
+  const pcl_ncut_seg::Hierarchy& getHierarchy() const { return segmenter_.hierarchy(); }
+  /** \brief The supernode graph G_s (Sec. 5.1); its type is the core's
+   * (core/cut/supernode_graph.h, in the source tree). */
+  const pcl_ncut_seg::WeightedGraph& getSupernodeGraph() const {
+    return segmenter_.supernodeGraph();
+  }
   /** \brief Wall time of each phase of the last extract() (Table 1's columns). */
   const pcl_ncut_seg::PhaseTimes& getPhaseTimes() const { return times_; }
-  /** \brief The whole expensive stage, or nullptr. */
-  const pcl_ncut_seg::Analysis* getAnalysis() const { return analysis_.get(); }
+  /** \brief The whole expensive stage (of the first start), or nullptr; its type is the
+   * core's (core/model/model.h, in the source tree). */
+  const pcl_ncut_seg::Analysis* getAnalysis() const { return segmenter_.analysis(); }
+  /** \brief The analyses of every start (setStarts), or nullptr (core/model/model.h). */
+  const pcl_ncut_seg::Analyses* getAnalyses() const { return segmenter_.analyses(); }
   /** \brief Input index of each analysed point (the graph's vertex order). A point at exactly
    * the position of an earlier one is not analysed; it shares that point's results. Nor is a
    * point left out by setMaxPoints(); it shares its nearest analysed point's segment. */
@@ -283,25 +291,25 @@ protected:
   /** \brief The k nearest neighbours of each vertex with the search method set. */
   void searchNeighbours(const std::vector<int>& vertex_index, std::size_t k, int threads,
                         std::uint32_t* knn);
-  /** \brief CAD mode's approximate normals: the input's, or PCL's over N(p). */
-  std::vector<float> cadNormals(const pcl_ncut_seg::CsrGraph& graph) const;
+  /** \brief CAD mode's approximate normals: the input's, or PCL's over N(p), given the kNN
+   * graph (PointSegmenter::CadNormals). */
+  std::vector<float> cadNormals(const std::vector<std::uint32_t>& offsets,
+                                const std::vector<std::uint32_t>& targets) const;
   /** \brief Take params (valid) in place of params_, invalidating what they change. */
   bool update(const pcl_ncut_seg::Parameters& params, const char* method);
   void invalidate();
-  /** \brief The analysis of the start whose segments extract() returned (analysis_ set). */
-  const pcl_ncut_seg::Analysis& shownAnalysis() const {
-    return pcl_ncut_seg::startAnalysis(*analysis_, have_result_ ? result_.start : 0);
-  }
+  /** \brief The start whose segments extract() returned (0 without a result). */
+  std::size_t shownStart() const { return have_result_ ? segmenter_.start() : 0; }
 
   KdTreePtr search_;
   pcl_ncut_seg::Parameters params_;
   std::function<void(const char*, double)> progress_;
 
-  std::shared_ptr<pcl_ncut_seg::Analysis> analysis_;      ///< expensive stage, or null
+  /// The points as arrays, the expensive stage (or none) and the last cut.
+  pcl_ncut_seg::PointSegmenter segmenter_;
   std::vector<int> point_index_;                          ///< graph vertex -> input index
   std::vector<std::pair<int, std::uint32_t>> duplicates_; ///< (input index, graph vertex) of
                                                           ///< points at a vertex's position
-  pcl_ncut_seg::CutResult result_;
   pcl_ncut_seg::PhaseTimes times_;
   bool have_result_ = false;
 

@@ -9,6 +9,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include "core/model/model.h" // the cut result, its hierarchy and G_s
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <atomic>
@@ -78,7 +79,7 @@ private:
   /** \brief The PCL class, with its cut result (protected there) readable. */
   class Seg : public pcl::SupernodeNCutSegmentation<pcl::PointNormal> {
   public:
-    const pcl_ncut_seg::CutResult& result() const { return result_; }
+    const pcl_ncut_seg::CutResult& result() const { return segmenter_.result(); }
   };
 
   void checkIdle() const;

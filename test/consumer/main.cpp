@@ -1,11 +1,14 @@
-// Segments two spheres far apart with the installed library: expects two segments, one per
-// sphere. Exits non-zero otherwise.
+// Segments two spheres far apart with the installed library, through the PCL class and through
+// segmentPoints(): expects two segments, one per sphere, the same from both. Exits non-zero
+// otherwise. Only the installed headers are reachable (the core's are not installed).
+#include <pcl_ncut_seg/segment_points.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <set>
 #include <vector>
@@ -47,6 +50,17 @@ int main() {
     std::fprintf(stderr, "no coloured cloud\n");
     return 1;
   }
+  std::vector<float> xyz;
+  for (const pcl::PointXYZ& p : *cloud)
+    xyz.insert(xyz.end(), {p.x, p.y, p.z});
+  const std::vector<std::uint32_t> labels =
+      pcl_ncut_seg::segmentPoints(xyz.data(), cloud->size(), seg.getParameters());
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    for (int index : segments[s].indices)
+      if (labels.size() != cloud->size() || labels[index] != s) {
+        std::fprintf(stderr, "segmentPoints() disagrees with the PCL class\n");
+        return 1;
+      }
   std::printf("pcl_ncut_seg consumer: 2 segments of %d points, as expected\n", n);
   return 0;
 }

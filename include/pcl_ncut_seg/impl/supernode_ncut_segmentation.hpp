@@ -1,7 +1,7 @@
 /*
  * pcl_ncut_seg: the PCL front end. It validates the input, turns the cloud into arrays,
- * finds the neighbours with the search method, supplies CAD mode's normals and maps the
- * results back; the pipeline itself is the core's (pcl_ncut_seg/core/pipeline.h).
+ * supplies the search method's neighbours and CAD mode's normals and maps the results back;
+ * the arrays' segmentation is PointSegmenter's (<pcl_ncut_seg/segment_points.h>).
  */
 #pragma once
 
@@ -12,10 +12,6 @@
 #include <pcl/features/normal_3d.h>
 #include <pcl/search/kdtree.h>
 
-#include "core/common/threads.h"
-#include "core/graph/knn.h"
-#include "core/graph/subsample.h"
-#include "core/views/rim_merge.h"
 #include <pcl_ncut_seg/impl/supernode_ncut_segmentation_parameters.hpp>
 
 #include <algorithm>
@@ -31,10 +27,9 @@ template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::~SupernodeNCutSegmentation() = default;
 
 template <typename PointT> void pcl::SupernodeNCutSegmentation<PointT>::invalidate() {
-  analysis_.reset();
+  segmenter_.reset();
   point_index_.clear();
   duplicates_.clear();
-  result_ = pcl_ncut_seg::CutResult();
   have_result_ = false;
 }
 
@@ -155,8 +150,8 @@ void pcl::SupernodeNCutSegmentation<PointT>::searchNeighbours(const std::vector<
 }
 
 template <typename PointT>
-std::vector<float>
-pcl::SupernodeNCutSegmentation<PointT>::cadNormals(const pcl_ncut_seg::CsrGraph& graph) const {
+std::vector<float> pcl::SupernodeNCutSegmentation<PointT>::cadNormals(
+    const std::vector<std::uint32_t>& offsets, const std::vector<std::uint32_t>& targets) const {
   // Sec. 7: approximate normals, from the input or fitted by PCL over p and N(p).
   const std::size_t n = point_index_.size();
   std::vector<float> normals(3 * n, std::numeric_limits<float>::quiet_NaN());
@@ -167,8 +162,8 @@ pcl::SupernodeNCutSegmentation<PointT>::cadNormals(const pcl_ncut_seg::CsrGraph&
     if (ncut_detail::inputNormal((*input_)[point_index_[i]], &normals[3 * i]))
       continue;
     neighbourhood.assign(1, point_index_[i]);
-    for (std::uint32_t e = graph.offsets[i]; e < graph.offsets[i + 1]; ++e)
-      neighbourhood.push_back(point_index_[graph.targets[e]]);
+    for (std::uint32_t e = offsets[i]; e < offsets[i + 1]; ++e)
+      neighbourhood.push_back(point_index_[targets[e]]);
     if (neighbourhood.size() >= 3 &&
         pcl::computePointNormal(*input_, neighbourhood, plane, curvature))
       for (int d = 0; d < 3; ++d)
@@ -184,9 +179,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     return false;
   // Points at exactly the position of an earlier one are analysed once and share its segment:
   // copies would fill each other's k nearest neighbours with zero-length edges. Vertices are
-  // numbered along a Morton curve (core/pipeline/pipeline.h); ties go by the distance from the
-  // centroid (core/centrality/starts.h), so the order of the points changes only the segments'
-  // numbers.
+  // numbered along a Morton curve; ties go by the distance from the centroid, so the order of
+  // the points changes only the segments' numbers (PointSegmenter::prepare()).
   std::vector<float> xyz(3 * valid.size());
   for (std::size_t i = 0; i < valid.size(); ++i) {
     const PointT& p = (*input_)[valid[i]];
@@ -194,33 +188,22 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     xyz[3 * i + 1] = p.y;
     xyz[3 * i + 2] = p.z;
   }
-  // A dense cloud: analysed at the resolution of max_points.
-  pcl_ncut_seg::PreparedPoints prepared = pcl_ncut_seg::prepareAtResolution(
-      std::move(xyz),
-      params_.graph.max_points ? static_cast<std::size_t>(*params_.graph.max_points) : 0,
-      pcl_ncut_seg::usableThreads(params_.execution.num_threads));
-  const std::size_t n = prepared.point.size();
-  point_index_.resize(n);
-  for (std::size_t v = 0; v < n; ++v)
-    point_index_[v] = valid[prepared.point[v]];
-  duplicates_.clear();
-  for (const auto& c : prepared.copies)
-    duplicates_.emplace_back(valid[c.first], c.second);
   // The rim of an open view (not in CAD mode), whether or not the open-view stages run: it
   // decides how the view is analysed (one start, f without the noise's mean), which the cut
-  // parameters must not change.
-  if (!params_.cad.enabled) { // a view's normals face it; is a list one view from it?
-    std::array<float, 3> origin;
-    for (int d = 0; d < 3; ++d)
-      origin[d] = static_cast<float>(input_->sensor_origin_[d] - prepared.centroid[d]);
-    prepared.set.sensor_origin = origin;
-  }
-  std::vector<int>().swap(valid); // free before the expensive stage, as the maps below
-  std::vector<std::uint32_t>().swap(prepared.point);
-  decltype(prepared.copies)().swap(prepared.copies);
+  // parameters must not change. A view's normals face the sensor.
+  const float origin[3] = {input_->sensor_origin_[0], input_->sensor_origin_[1],
+                           input_->sensor_origin_[2]};
+  pcl_ncut_seg::PointSegmenter::VertexMap map = segmenter_.prepare(std::move(xyz), params_, origin);
+  const std::size_t n = map.point.size();
+  point_index_.resize(n);
+  for (std::size_t v = 0; v < n; ++v)
+    point_index_[v] = valid[map.point[v]];
+  duplicates_.clear();
+  for (const auto& c : map.copies)
+    duplicates_.emplace_back(valid[c.first], c.second);
+  std::vector<int>().swap(valid); // free before the expensive stage, as the map
+  map = pcl_ncut_seg::PointSegmenter::VertexMap();
 
-  if (progress_)
-    progress_("kNN", 0.0);
   // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points).
   const int k_wanted = params_.graph.k;
   const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(k_wanted), n - 1);
@@ -228,21 +211,20 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] only %zu points: using %zu "
              "neighbours instead of %d.\n",
              n, k, k_wanted);
-  pcl_ncut_seg::PointSet& set = prepared.set;
-  set.k = k;
-  set.knn.assign(n * std::max<std::size_t>(k, 1), pcl_ncut_seg::kNone);
-  const int threads = pcl_ncut_seg::usableThreads(params_.execution.num_threads);
-  if (k > 0 && !search_) // the default: FLANN's kd-tree as pcl::search::KdTree builds it
-    pcl_ncut_seg::kNearestNeighbours(prepared.raw.data(), n, k, threads, set.knn.data());
-  else if (k > 0)
-    searchNeighbours(point_index_, k, threads, set.knn.data());
-  std::vector<float>().swap(prepared.raw);
+  pcl_ncut_seg::PointSegmenter::NeighbourSearch search;
+  if (search_) // else FLANN's kd-tree as pcl::search::KdTree builds it
+    search = [this](std::size_t neighbours, int threads, std::uint32_t* knn) {
+      searchNeighbours(point_index_, neighbours, threads, knn);
+    };
+  pcl_ncut_seg::PointSegmenter::CadNormals normals;
   if (params_.cad.enabled)
-    set.normals = [this](const pcl_ncut_seg::CsrGraph& graph) { return cadNormals(graph); };
+    normals = [this](const std::vector<std::uint32_t>& offsets,
+                     const std::vector<std::uint32_t>& targets) {
+      return cadNormals(offsets, targets);
+    };
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  analysis_ = std::make_shared<pcl_ncut_seg::Analysis>(
-      pcl_ncut_seg::analyze(std::move(set), params_, times_, progress_));
+  segmenter_.analyze(params_, times_, progress_, search, normals);
   return true;
 }
 
@@ -254,16 +236,16 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
     PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] no input cloud.\n");
     return;
   }
-  if (analysis_ && !pcl_ncut_seg::serves(*analysis_, params_))
+  if (segmenter_.analysed() && !segmenter_.serves(params_))
     invalidate(); // the cut asks for a measurement the kept analysis did not make
-  if (!analysis_ && !analyze()) {
+  if (!segmenter_.analysed() && !analyze()) {
     invalidate();
     deinitCompute();
     return;
   }
   if (progress_)
     progress_("HSeg", 0.0);
-  result_ = pcl_ncut_seg::cut(*analysis_, params_, times_);
+  segmenter_.cut(params_, times_);
   if (progress_)
     progress_("HSeg", 1.0);
   // Each point's segment, then one pass in index order: every segment's indices come out
@@ -271,13 +253,14 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   // to its nearest analysed one (max_points) can come earlier. Segments are renumbered by their
   // smallest point index, in the result too, so that labels and colours agree with their order.
   constexpr std::uint32_t kNoSegment = std::numeric_limits<std::uint32_t>::max();
+  const std::vector<std::uint32_t>& point_segment = segmenter_.pointSegments();
   std::vector<std::uint32_t> label(input_->size(), kNoSegment);
   for (std::size_t i = 0; i < point_index_.size(); ++i)
-    label[point_index_[i]] = result_.point_segment[i];
+    label[point_index_[i]] = point_segment[i];
   for (const auto& d : duplicates_)
-    label[d.first] = result_.point_segment[d.second];
-  std::vector<std::uint32_t> rank(result_.num_segments, kNoSegment);
-  std::vector<std::size_t> size(result_.num_segments, 0);
+    label[d.first] = point_segment[d.second];
+  std::vector<std::uint32_t> rank(segmenter_.numSegments(), kNoSegment);
+  std::vector<std::size_t> size(segmenter_.numSegments(), 0);
   std::uint32_t next = 0;
   for (const std::uint32_t l : label)
     if (l != kNoSegment) {
@@ -288,19 +271,14 @@ void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndic
   for (std::uint32_t& r : rank) // (a segment with no point: none is expected)
     if (r == kNoSegment)
       r = next++;
-  segments.resize(result_.num_segments);
+  segments.resize(segmenter_.numSegments());
   for (std::size_t s = 0; s < rank.size(); ++s)
     segments[rank[s]].indices.reserve(size[s]);
   for (std::size_t idx = 0; idx < label.size(); ++idx)
     if (label[idx] != kNoSegment)
       segments[rank[label[idx]]].indices.push_back(static_cast<pcl::index_t>(idx));
-  if (!std::is_sorted(rank.begin(), rank.end())) {
-    for (std::uint32_t& l : result_.point_segment)
-      l = rank[l];
-    for (std::uint32_t& l : result_.supernode_segment)
-      if (l < rank.size())
-        l = rank[l];
-  }
+  if (!std::is_sorted(rank.begin(), rank.end()))
+    segmenter_.renumberSegments(rank);
   for (auto& s : segments)
     s.header = input_->header;
   have_result_ = true;
@@ -373,11 +351,11 @@ pcl::SupernodeNCutSegmentation<PointT>::getColoredCloud() const {
     q.r = q.g = q.b = 0; // points in no segment are black
   for (std::size_t i = 0; i < point_index_.size(); ++i) {
     auto& q = (*out)[point_index_[i]];
-    segmentColor(result_.point_segment[i], q.r, q.g, q.b);
+    segmentColor(segmenter_.pointSegments()[i], q.r, q.g, q.b);
   }
   for (const auto& d : duplicates_) {
     auto& q = (*out)[d.first];
-    segmentColor(result_.point_segment[d.second], q.r, q.g, q.b);
+    segmentColor(segmenter_.pointSegments()[d.second], q.r, q.g, q.b);
   }
   return out;
 }
@@ -391,29 +369,30 @@ pcl::SupernodeNCutSegmentation<PointT>::getLabeledCloud() const {
   for (auto& q : *out)
     q.label = 0; // points in no segment
   for (std::size_t i = 0; i < point_index_.size(); ++i)
-    (*out)[point_index_[i]].label = result_.point_segment[i] + 1;
+    (*out)[point_index_[i]].label = segmenter_.pointSegments()[i] + 1;
   for (const auto& d : duplicates_)
-    (*out)[d.first].label = result_.point_segment[d.second] + 1;
+    (*out)[d.first].label = segmenter_.pointSegments()[d.second] + 1;
   return out;
 }
 
 template <typename PointT>
 std::vector<float> pcl::SupernodeNCutSegmentation<PointT>::getCentrality() const {
   std::vector<float> out(input_ ? input_->size() : 0, std::numeric_limits<float>::quiet_NaN());
-  if (analysis_)
+  if (segmenter_.analysed()) {
+    const std::vector<float>& f = segmenter_.centrality(shownStart());
     for (std::size_t i = 0; i < point_index_.size(); ++i)
-      out[point_index_[i]] = shownAnalysis().centrality.f[i];
-  if (analysis_)
+      out[point_index_[i]] = f[i];
     for (const auto& d : duplicates_)
-      out[d.first] = shownAnalysis().centrality.f[d.second];
+      out[d.first] = f[d.second];
+  }
   return out;
 }
 
 template <typename PointT>
 std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getLocalMaxima() const {
   std::vector<int> out;
-  if (analysis_)
-    for (std::uint32_t v : shownAnalysis().raw_supernodes.localMaxima())
+  if (segmenter_.analysed())
+    for (std::uint32_t v : segmenter_.localMaxima(shownStart()))
       out.push_back(point_index_[v]);
   return out;
 }
@@ -421,8 +400,8 @@ std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getLocalMaxima() const 
 template <typename PointT>
 std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSaddles() const {
   std::vector<int> out;
-  if (analysis_)
-    for (std::uint32_t v : shownAnalysis().raw_supernodes.saddles())
+  if (segmenter_.analysed())
+    for (std::uint32_t v : segmenter_.saddles(shownStart()))
       out.push_back(point_index_[v]);
   return out;
 }
@@ -430,9 +409,8 @@ std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSaddles() const {
 template <typename PointT>
 std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSupernodeLabels(bool refined) const {
   std::vector<int> out(input_ ? input_->size() : 0, -1);
-  if (analysis_) {
-    const auto& label =
-        refined ? shownAnalysis().supernodes.label : shownAnalysis().raw_supernodes.label;
+  if (segmenter_.analysed()) {
+    const auto& label = segmenter_.supernodeLabels(shownStart(), refined);
     for (std::size_t i = 0; i < point_index_.size(); ++i)
       out[point_index_[i]] = static_cast<int>(label[i]);
     for (const auto& d : duplicates_)
@@ -443,19 +421,17 @@ std::vector<int> pcl::SupernodeNCutSegmentation<PointT>::getSupernodeLabels(bool
 
 template <typename PointT>
 std::size_t pcl::SupernodeNCutSegmentation<PointT>::getNumberOfSupernodes(bool refined) const {
-  if (!analysis_)
-    return 0;
-  return refined ? shownAnalysis().supernodes.size() : shownAnalysis().raw_supernodes.size();
+  return segmenter_.analysed() ? segmenter_.numSupernodes(shownStart(), refined) : 0;
 }
 
 template <typename PointT>
 pcl_ncut_seg::NoiseTest pcl::SupernodeNCutSegmentation<PointT>::getNoiseTest() const {
-  return analysis_ ? analysis_->noise : pcl_ncut_seg::NoiseTest{};
+  return segmenter_.noiseTest();
 }
 
 template <typename PointT>
 pcl_ncut_seg::ViewTest pcl::SupernodeNCutSegmentation<PointT>::getViewTest() const {
-  return analysis_ ? analysis_->view : pcl_ncut_seg::ViewTest{};
+  return segmenter_.viewTest();
 }
 
 #define PCL_INSTANTIATE_SupernodeNCutSegmentation(T)                                               \

@@ -2,7 +2,6 @@
 // and the face-orientation similarity of supernodes.
 #include "core/cad/cad.h"
 
-#include "core/pipeline/analysis_stages.h"
 #include "core/supernodes/refinement.h"
 
 #include <Eigen/Dense>
@@ -433,31 +432,25 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
   return out;
 }
 
-Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
-                    const Parameters& params, const std::uint32_t* tie_rank, PhaseTimes& times,
-                    const PhaseProgressFn& progress) {
-  const CadParams& cad = params.cad;
-  const auto start = std::chrono::steady_clock::now();
+CadGraph cadGraph(const CsrGraph& graph, const float* normals, float ridge_angle) {
+  CadGraph out;
   const std::vector<float> smoothed = smoothNormals(graph, normals, kCadSmoothingIterations);
-  const std::vector<bool> ridge = ridgePoints(graph, smoothed, cad.ridge_angle);
-  const std::vector<float> phi = ridgeDistance(graph, ridge);
-  CsrGraph transformed = transformGraph(graph, phi, kRidgeShrink, kRidgeStretch);
-  times.knn += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.ridge = ridgePoints(graph, smoothed, ridge_angle);
+  const std::vector<float> phi = ridgeDistance(graph, out.ridge);
+  out.graph = transformGraph(graph, phi, kRidgeShrink, kRidgeStretch);
+  return out;
+}
 
-  std::vector<Centrality> f = centralityStage(transformed, params, tie_rank, times, progress);
-  Analysis a = featureStages(std::move(transformed), std::move(f[0]), params, times, progress);
-  const auto before_angles = std::chrono::steady_clock::now();
+void cadFaces(Analysis& a, const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
+              float area_fraction) {
   a.cad = true;
   // Faces end at ridges: no supernode crosses one (Sec. 7, "ridges to feature boundaries").
-  const std::size_t min_points = static_cast<std::size_t>(
-      std::ceil(params.refinement.area_fraction * double(graph.numVertices())));
+  const std::size_t min_points =
+      static_cast<std::size_t>(std::ceil(area_fraction * double(graph.numVertices())));
   a.supernodes = splitAtRidges(graph, xyz, ridge, a.supernodes.label, min_points);
   a.stats = featureStats(a.supernodes, a.centrality.f, a.radii);
   a.conn = supernodeConnectivity(*a.graph, a.centrality.f, a.supernodes.label);
   a.face_angles = faceContactAngles(*a.graph, xyz, a.supernodes.label, ridge);
-  times.refinement +=
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - before_angles).count();
-  return a;
 }
 
 } // namespace pcl_ncut_seg

@@ -11,7 +11,7 @@
 
 #include "core/cut/supernode_graph.h"
 #include "core/graph/csr_graph.h"
-#include "core/pipeline/pipeline.h"
+#include "core/model/model.h"
 #include "core/supernodes/supernodes.h"
 
 #include <cstdint>
@@ -91,15 +91,30 @@ WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const Feature
                                      const Connectivity& conn, const Connectivity& face_angles,
                                      const SimilarityParams& params);
 
-/** \brief The expensive stage in CAD mode: smooth the normals, transform the graph (Sec. 7),
- * run Secs. 4.1-4.3 on the transformed graph (centralityStage(), featureStages()), then measure the
- * face angles between the refined supernodes. The time of the normal smoothing and transformation
- * is added to times.knn, as in the paper's Table 1. \param[in] graph    the kNN graph with
- * Euclidean lengths \param[in] xyz      3 floats per vertex \param[in] normals  3 floats per
- * vertex, approximate normals (any orientation)
- */
-Analysis analyzeCad(const CsrGraph& graph, const float* xyz, const float* normals,
-                    const Parameters& params, const std::uint32_t* tie_rank, PhaseTimes& times,
-                    const PhaseProgressFn& progress = nullptr);
+/** \brief Sec. 7's transformed graph and its ridges. */
+struct CadGraph {
+  CsrGraph graph;          ///< transformGraph() of the kNN graph
+  std::vector<bool> ridge; ///< ridgePoints() of the smoothed normals
+};
+
+/** \brief The graph CAD mode analyses (Sec. 7): the normals smoothed (smoothNormals()), the
+ * ridge points found (ridgePoints()), and the kNN graph transformed by the distance from them
+ * (ridgeDistance(), transformGraph()). Secs. 4.1-4.3 then run on CadGraph::graph.
+ * \param[in] graph        the kNN graph with Euclidean lengths
+ * \param[in] normals      3 floats per vertex, approximate normals (any orientation)
+ * \param[in] ridge_angle  cad.ridge_angle, degrees */
+CadGraph cadGraph(const CsrGraph& graph, const float* normals, float ridge_angle);
+
+/** \brief CAD mode's faces (Sec. 7, "ridges to feature boundaries") on an analysis of the
+ * transformed graph after Secs. 4.1-4.3: its refined supernodes split at the ridges
+ * (splitAtRidges(), regions of fewer than area_fraction of the points joined), their features
+ * and eq. (8) measured again, and the angles between touching faces (faceContactAngles()).
+ * Sets analysis.cad.
+ * \param[in] graph          the kNN graph with Euclidean lengths (not the transformed one)
+ * \param[in] xyz            3 floats per vertex
+ * \param[in] ridge          CadGraph::ridge
+ * \param[in] area_fraction  refinement.area_fraction */
+void cadFaces(Analysis& analysis, const CsrGraph& graph, const float* xyz,
+              const std::vector<bool>& ridge, float area_fraction);
 
 } // namespace pcl_ncut_seg

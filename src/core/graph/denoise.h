@@ -9,6 +9,7 @@
 #pragma once
 
 #include "core/graph/csr_graph.h"
+#include <pcl_ncut_seg/analysis_report.h> // NoiseTest
 
 #include <cstdint>
 #include <vector>
@@ -53,14 +54,6 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
  * blur them.
  * \param[in] graph  the symmetric kNN graph (before any bridges) */
 double samplingIrregularity(const CsrGraph& graph);
-
-/** \brief What the graph stage found out about noise. */
-struct NoiseTest {
-  double residual_growth = 0.0;       ///< residualGrowth(); 0 when it was not measured
-  bool projected = false;             ///< the points were projected onto their local planes
-  double sampling_irregularity = 0.0; ///< samplingIrregularity(); 0 when it was not measured
-  bool irregular = false;             ///< at least graph.irregular_sampling: f is averaged once
-};
 
 /** \brief Whether a cloud counts as noisy: a residual growth below the bound (2: halfway
  * between noise's 1 and curvature's 4 on a log scale) and above 0. */

@@ -12,7 +12,7 @@
  */
 #pragma once
 
-#include "core/pipeline/pipeline.h"
+#include "core/model/points.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -143,9 +143,6 @@ void contactStage(Analysis& a, const float* xyz, const SurfaceBends& bends, cons
     a.rim_xyz.assign(xyz, xyz + 3 * a.graph->numVertices());
     a.rim_normals = bends.normals;
   }
-  a.has_rim_planes = needs.rim;
-  a.has_concavity = needs.concavity;
-  a.has_crease = needs.crease;
 }
 
 } // namespace pcl_ncut_seg

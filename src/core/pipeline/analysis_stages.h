@@ -5,7 +5,9 @@
 #pragma once
 
 #include "core/graph/denoise.h"
-#include "core/pipeline/pipeline.h"
+#include "core/model/model.h"
+#include <pcl_ncut_seg/analysis_report.h>
+#include <pcl_ncut_seg/parameters.h>
 
 #include <memory>
 
@@ -61,7 +63,8 @@ void creaseStage(Analysis& analysis, const float* xyz, const SurfaceBends& bends
                  const Parameters& params);
 
 /** \brief Contact stage (extension): what the cut needs from the surface: the concavity of
- * each contact between supernodes and the concave bend of each kNN edge (cutNeeds()). */
+ * each contact between supernodes and the concave bend of each kNN edge, as needs asks; the
+ * caller records them in Analysis::measured. */
 void contactStage(Analysis& analysis, const float* xyz, const SurfaceBends& bends,
                   const CutNeeds& needs, unsigned num_threads);
 

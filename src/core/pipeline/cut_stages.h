@@ -4,7 +4,8 @@
  */
 #pragma once
 
-#include "core/pipeline/pipeline.h"
+#include "core/model/model.h"
+#include <pcl_ncut_seg/parameters.h>
 
 namespace pcl_ncut_seg {
 

@@ -1,15 +1,13 @@
+// The orchestrator: the stages of core/pipeline/pipeline.h, in its order.
 #include "core/pipeline/pipeline.h"
 
 #include "core/cad/cad.h"
 #include "core/centrality/starts.h"
-#include "core/common/morton.h"
 #include "core/common/stopwatch.h"
-#include "core/common/threads.h"
-#include "core/graph/knn.h"
-#include "core/graph/subsample.h"
 #include "core/pipeline/analysis_stages.h"
 #include "core/pipeline/cut_stages.h"
 #include "core/views/single_view.h"
+#include "core/views/view_origin.h"
 
 #include <algorithm>
 #include <limits>
@@ -26,8 +24,9 @@ CutNeeds cutNeeds(const Parameters& params) {
 
 bool serves(const Analysis& analysis, const Parameters& params) {
   const CutNeeds needs = cutNeeds(params);
-  return analysis.cad == params.cad.enabled && (!needs.concavity || analysis.has_concavity) &&
-         (!needs.crease || analysis.has_crease) && (!needs.rim || analysis.has_rim_planes);
+  const CutNeeds& measured = analysis.measured;
+  return analysis.cad == params.cad.enabled && (!needs.concavity || measured.concavity) &&
+         (!needs.crease || measured.crease) && (!needs.rim || measured.rim);
 }
 
 namespace {
@@ -57,12 +56,67 @@ DistinctStarts distinctStarts(const std::vector<Centrality>& f) {
   return d;
 }
 
-/// Secs. 4.1-4.3 and the extensions that measure the surface's bends around the refined
-/// supernodes, once per start of eq. (1)'s sampling with its own samples
-/// (core/centrality/starts.h); the bends are measured once. average: the graph stage found the
-/// points noisy (and projected them) or drawn at random (core/graph/denoise.h). viewpoint: one
-/// view's sensor (null: unknown or a whole surface), which the normals face.
-Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
+/// The graph stage and the view test: the kNN graph (its knn freed), the noise test, and the
+/// rim of a cloud that is one view (points.rim, points.sensor_origin).
+struct Surface {
+  CsrGraph graph;
+  NoiseTest noise;
+  ViewTest view;
+};
+Surface graphAndView(PointSet& points, const Parameters& params) {
+  Surface s;
+  const std::size_t n = points.xyz.size() / 3;
+  // CAD parts meet at sharp ridges, which projecting the points onto planes would round.
+  s.graph = graphStage(points.xyz, points.knn.data(), points.k, params.graph, !params.cad.enabled,
+                       params.execution.num_threads, &s.noise);
+  std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
+  if (!params.cad.enabled && params.graph.single_view && points.rim.empty()) {
+    if (points.sensor_origin && couldBeSensor(points.xyz.data(), n, points.sensor_origin->data()))
+      points.rim = singleViewRim(s.graph, points.xyz.data(), points.sensor_origin->data(),
+                                 params.execution.num_threads);
+    // No view from the given origin (or none given): perhaps one from elsewhere, the origin
+    // left at 0 in another frame.
+    if (points.rim.empty())
+      if (auto origin = estimateViewOrigin(s.graph, points.xyz.data(), params.execution.num_threads,
+                                           &points.rim)) {
+        points.sensor_origin = origin;
+        s.view.origin_estimated = true;
+      }
+  }
+  if (!points.rim.empty()) {
+    s.view.view = true;
+    s.view.origin = *points.sensor_origin;
+    s.view.rim_points =
+        static_cast<std::size_t>(std::count(points.rim.begin(), points.rim.end(), std::uint8_t{1}));
+  }
+  return s;
+}
+
+/// The extensions that measure the surface's bends around the refined supernodes of each
+/// start; the bends are measured once. viewpoint: one view's sensor, which the normals face.
+void bendStages(std::vector<Analysis>& each, const std::vector<float>& xyz,
+                const Parameters& params, const float* viewpoint, PhaseTimes& times) {
+  const CutNeeds needs = cutNeeds(params);
+  const bool creases = params.refinement.crease_split.has_value();
+  if (!creases && !needs.concavity && !needs.crease && !needs.rim)
+    return;
+  // Measured between the supernodes, like eq. (8): their time counts as refinement time.
+  Stopwatch clock;
+  const SurfaceBends bends =
+      surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint);
+  for (Analysis& one : each) {
+    if (creases)
+      creaseStage(one, xyz.data(), bends, params);
+    contactStage(one, xyz.data(), bends, needs, params.execution.num_threads);
+  }
+  times.refinement += clock.lap();
+}
+
+/// Secs. 4.1-4.3 and the bends' extensions, once per start of eq. (1)'s sampling with its own
+/// samples (core/centrality/starts.h). average: the graph stage found the points noisy (and
+/// projected them) or drawn at random (core/graph/denoise.h). viewpoint: one view's sensor
+/// (null: unknown or a whole surface), which the normals face.
+Analyses surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
                          const PhaseProgressFn& progress, bool average, const float* viewpoint) {
@@ -82,7 +136,8 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
     return static_cast<double>(done) / static_cast<double>(num);
   };
   const auto shared = std::make_shared<const CsrGraph>(std::move(graph));
-  std::vector<Analysis> each;
+  Analyses out;
+  std::vector<Analysis>& each = out.starts;
   if (progress)
     progress("Snod", 0.0);
   for (std::size_t i = 0; i < num; ++i) {
@@ -98,26 +153,29 @@ Analysis surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
     if (progress)
       progress("LRef", share(i + 1));
   }
-  const CutNeeds needs = cutNeeds(params);
-  const bool creases = params.refinement.crease_split.has_value();
-  if (creases || needs.concavity || needs.crease || needs.rim) {
-    // Measured between the supernodes, like eq. (8): their time counts as refinement time.
-    Stopwatch clock;
-    const SurfaceBends bends =
-        surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint);
-    for (Analysis& one : each) {
-      if (creases)
-        creaseStage(one, xyz.data(), bends, params);
-      contactStage(one, xyz.data(), bends, needs, params.execution.num_threads);
-    }
-    times.refinement += clock.lap();
-  }
-  Analysis a = std::move(each[0]);
-  for (std::size_t i = 1; i < each.size(); ++i)
-    a.other_starts.push_back(std::move(each[i]));
-  if (starts > 1)
-    a.start_weights = distinct.weight;
-  return a;
+  bendStages(each, xyz, params, viewpoint, times);
+  out.weights = distinct.weight;
+  return out;
+}
+
+/// CAD mode (Sec. 7), the analysis in place of surfaceAnalysis(): the CAD graph, Secs.
+/// 4.1-4.3 on it from one start, then the faces. The graph's transformation counts as kNN
+/// time, the faces as refinement time (Table 1).
+Analyses cadAnalysis(const CsrGraph& graph, const float* xyz, const float* normals,
+                     const Parameters& params, const std::uint32_t* tie_rank, PhaseTimes& times,
+                     const PhaseProgressFn& progress) {
+  Stopwatch clock;
+  CadGraph cad = cadGraph(graph, normals, params.cad.ridge_angle);
+  times.knn += clock.lap();
+  std::vector<Centrality> f = centralityStage(cad.graph, params, tie_rank, times, progress);
+  Analyses out;
+  out.starts.push_back(
+      featureStages(std::move(cad.graph), std::move(f[0]), params, times, progress));
+  clock.lap();
+  cadFaces(out.starts[0], graph, xyz, cad.ridge, params.refinement.area_fraction);
+  times.refinement += clock.lap();
+  out.weights = {1};
+  return out;
 }
 
 /// The cut stages on one start's analysis.
@@ -136,41 +194,17 @@ CutResult cutStart(const Analysis& analysis, const Parameters& params, PhaseTime
 }
 } // namespace
 
-Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
+Analyses analyze(PointSet points, const Parameters& params, PhaseTimes& times,
                  const PhaseProgressFn& progress) {
   Stopwatch clock;
   const std::size_t n = points.xyz.size() / 3;
-  NoiseTest noise;
-  // CAD parts meet at sharp ridges, which projecting the points onto planes would round.
-  CsrGraph graph = graphStage(points.xyz, points.knn.data(), points.k, params.graph,
-                              !params.cad.enabled, params.execution.num_threads, &noise);
-  std::vector<std::uint32_t>().swap(points.knn); // free before the expensive stages
-  const CutNeeds needs = cutNeeds(params);
-  ViewTest view;
-  if (!params.cad.enabled && params.graph.single_view && points.rim.empty()) {
-    if (points.sensor_origin && couldBeSensor(points.xyz.data(), n, points.sensor_origin->data()))
-      points.rim = singleViewRim(graph, points.xyz.data(), points.sensor_origin->data(),
-                                 params.execution.num_threads);
-    // No view from the given origin (or none given): perhaps one from elsewhere, the origin
-    // left at 0 in another frame.
-    if (points.rim.empty())
-      if (auto origin = estimateViewOrigin(graph, points.xyz.data(), params.execution.num_threads,
-                                           &points.rim)) {
-        points.sensor_origin = origin;
-        view.origin_estimated = true;
-      }
-  }
-  if (!points.rim.empty()) {
-    view.view = true;
-    view.origin = *points.sensor_origin;
-    view.rim_points =
-        static_cast<std::size_t>(std::count(points.rim.begin(), points.rim.end(), std::uint8_t{1}));
-  }
+  Surface surface = graphAndView(points, params);
   // Ties and the sampling's start by distance from the centroid of each connected component:
   // the same for any order of the points, and a far outlier moves no other component's start.
   std::vector<std::uint32_t> component;
-  connectedComponents(graph, component);
+  connectedComponents(surface.graph, component);
   const std::vector<std::uint32_t> rank = centralRanks(points.xyz.data(), n, component);
+  const CutNeeds needs = cutNeeds(params);
   const bool keep_xyz = params.cad.enabled || needs.concavity || needs.crease || needs.rim ||
                         params.refinement.crease_split.has_value();
   if (!keep_xyz)
@@ -178,113 +212,48 @@ Analysis analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   times.knn += clock.lap();
   if (progress)
     progress("kNN", 1.0);
-  Analysis a;
+  Analyses out;
   if (params.cad.enabled) {
     // Sec. 7: approximate normals from the caller; their time counts as kNN time (Table 1).
     const std::vector<float> normals =
-        points.normals ? points.normals(graph)
+        points.normals ? points.normals(surface.graph)
                        : std::vector<float>(3 * n, std::numeric_limits<float>::quiet_NaN());
     times.knn += clock.lap();
-    a = analyzeCad(graph, points.xyz.data(), normals.data(), params, rank.data(), times, progress);
+    out = cadAnalysis(surface.graph, points.xyz.data(), normals.data(), params, rank.data(), times,
+                      progress);
   } else {
     const float* viewpoint =
         points.sensor_origin && !points.rim.empty() ? points.sensor_origin->data() : nullptr;
-    a = surfaceAnalysis(points.xyz, std::move(graph), std::move(points.rim), params, rank.data(),
-                        times, progress, noise.projected || noise.irregular, viewpoint);
+    out = surfaceAnalysis(points.xyz, std::move(surface.graph), std::move(points.rim), params,
+                          rank.data(), times, progress,
+                          surface.noise.projected || surface.noise.irregular, viewpoint);
   }
-  a.order = std::move(points.order);
-  a.noise = noise;
-  a.view = view;
-  for (Analysis& other : a.other_starts) {
-    other.order = a.order;
-    other.noise = noise;
-    other.view = view;
+  for (std::size_t i = out.starts.size(); i-- > 0;) { // the first takes the order, the others copy
+    Analysis& a = out.starts[i];
+    a.order = i == 0 ? std::move(points.order) : points.order;
+    a.noise = surface.noise;
+    a.view = surface.view;
+    a.measured = needs;
   }
-  return a;
+  return out;
 }
 
-const Analysis& startAnalysis(const Analysis& analysis, std::size_t start) {
-  return start == 0 ? analysis : analysis.other_starts.at(start - 1);
-}
-
-CutResult cut(const Analysis& analysis, const Parameters& params, PhaseTimes& times) {
+CutResult cut(const Analyses& analyses, const Parameters& params, PhaseTimes& times) {
   times.hierarchy = times.points = 0;
-  if (analysis.other_starts.empty())
-    return cutStart(analysis, params, times);
+  if (analyses.starts.size() == 1)
+    return cutStart(analyses.starts[0], params, times);
   std::vector<CutResult> results;
-  results.push_back(cutStart(analysis, params, times));
-  for (const Analysis& other : analysis.other_starts)
-    results.push_back(cutStart(other, params, times));
+  for (const Analysis& one : analyses.starts)
+    results.push_back(cutStart(one, params, times));
   Stopwatch clock;
   std::vector<const std::vector<std::uint32_t>*> partitions;
   for (const CutResult& r : results)
     partitions.push_back(&r.point_segment);
-  const std::size_t start = medoidPartition(partitions, analysis.start_weights);
+  const std::size_t start = medoidPartition(partitions, analyses.weights);
   times.points += clock.lap();
   CutResult r = std::move(results[start]);
   r.start = start;
   return r;
-}
-
-void centrePoints(PreparedPoints& prepared) {
-  // Coordinates relative to the centroid, in double first, so that a model far from the
-  // origin keeps its float precision.
-  const std::size_t m = prepared.raw.size() / 3;
-  double c[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < m; ++i)
-    for (int d = 0; d < 3; ++d)
-      c[d] += prepared.raw[3 * i + d];
-  for (double& v : c)
-    v /= static_cast<double>(std::max<std::size_t>(m, 1));
-  prepared.set.xyz.resize(3 * m);
-  prepared.set.xyz.shrink_to_fit();
-  for (std::size_t i = 0; i < 3 * m; ++i)
-    prepared.set.xyz[i] = static_cast<float>(prepared.raw[i] - c[i % 3]);
-  for (int d = 0; d < 3; ++d)
-    prepared.centroid[d] = c[d];
-}
-
-PreparedPoints preparePoints(std::vector<float> xyz, const MortonBox* box) {
-  PreparedPoints out;
-  DistinctMortonOrder order = distinctMortonOrder(xyz.data(), xyz.size() / 3, box);
-  const std::size_t m = order.point.size();
-  out.raw.resize(3 * m);
-  for (std::size_t v = 0; v < m; ++v)
-    for (std::size_t d = 0; d < 3; ++d) // (no library call per point)
-      out.raw[3 * v + d] = xyz[3 * std::size_t(order.point[v]) + d];
-  std::vector<float>().swap(xyz); // before the centred copy: one copy of the points less
-  centrePoints(out);
-  out.point = std::move(order.point);
-  out.copies = std::move(order.copies);
-  out.set.order = std::move(order.rank);
-  return out;
-}
-
-std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n,
-                                         const Parameters& params) {
-  if (n == 0 || !validate(params))
-    return {};
-  PreparedPoints prepared = prepareAtResolution(
-      std::vector<float>(xyz, xyz + 3 * n),
-      params.graph.max_points ? static_cast<std::size_t>(*params.graph.max_points) : 0,
-      usableThreads(params.execution.num_threads));
-  const std::size_t m = prepared.point.size();
-  PointSet& set = prepared.set;
-  set.k = std::min<std::size_t>(static_cast<std::size_t>(params.graph.k), m - 1);
-  set.knn.assign(m * std::max<std::size_t>(set.k, 1), kNone);
-  if (set.k > 0)
-    kNearestNeighbours(prepared.raw.data(), m, set.k, usableThreads(params.execution.num_threads),
-                       set.knn.data());
-  std::vector<float>().swap(prepared.raw);
-  PhaseTimes times;
-  const Analysis analysis = analyze(std::move(set), params, times);
-  const CutResult r = cut(analysis, params, times);
-  std::vector<std::uint32_t> label(n);
-  for (std::size_t v = 0; v < m; ++v)
-    label[prepared.point[v]] = r.point_segment[v];
-  for (const auto& [copy, vertex] : prepared.copies)
-    label[copy] = r.point_segment[vertex];
-  return label;
 }
 
 } // namespace pcl_ncut_seg

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "core/graph/csr_graph.h"
+#include <pcl_ncut_seg/analysis_report.h> // ViewTest
 
 #include <array>
 #include <cstdint>
@@ -15,14 +16,6 @@
 #include <vector>
 
 namespace pcl_ncut_seg {
-
-/** \brief What the analysis found the points to be (PointSet::sensor_origin, singleViewRim()). */
-struct ViewTest {
-  bool view = false;             ///< one view: the points have a rim and the open-view stages run
-  bool origin_estimated = false; ///< the sensor position was read off the points
-  std::array<float, 3> origin{}; ///< the sensor position the view was seen from (when view)
-  std::size_t rim_points = 0;    ///< points on the view's rim
-};
 
 /** \brief Boundary points found from the points alone: a vertex whose graph neighbours,
  * projected onto the least-squares plane of its 1-ring, leave an angular gap above pi / 2
