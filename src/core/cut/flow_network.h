@@ -74,93 +74,136 @@ struct FlowNetwork {
   }
 
   /// The nodes that cannot reach t in the residual network after a maximum preflow from s.
-  std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t) {
-    std::vector<double>().swap(to_source); // built: free before the search's own arrays
-    std::vector<double>().swap(to_sink);
-    const std::uint32_t n = nodes();
-    std::vector<std::uint32_t> height(n), cur(first.begin(), first.end() - 1);
-    std::vector<double> excess(n, 0.0);
-    std::vector<char> queued(n, 0);
-    std::vector<std::uint32_t> queue;
-    std::size_t head = 0;
-    // Exact distances to t over residual arcs; n for nodes that cannot reach it.
-    auto globalRelabel = [&]() {
-      std::fill(height.begin(), height.end(), n);
-      std::vector<std::uint32_t> bfs{t};
-      height[t] = 0;
-      for (std::size_t i = 0; i < bfs.size(); ++i) {
-        const std::uint32_t u = bfs[i];
-        for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
-          const std::uint32_t w = arc[a].to;
-          if (w != s && height[w] == n && arc[arc[a].rev].cap > 0.0) {
-            height[w] = height[u] + 1;
-            bfs.push_back(w);
-          }
+  std::vector<char> sourceSide(std::uint32_t s, std::uint32_t t);
+};
+
+/// The push-relabel state of one maximum preflow (FIFO order of active nodes).
+class Preflow {
+public:
+  Preflow(FlowNetwork& net, std::uint32_t s, std::uint32_t t)
+      : net_(net), s_(s), t_(t), n_(net.nodes()), height_(n_),
+        cur_(net.first.begin(), net.first.end() - 1), excess_(n_, 0.0), queued_(n_, 0) {}
+
+  /// Saturate the source's arcs, then discharge active nodes until none is left.
+  void run() {
+    globalRelabel();
+    saturateSourceArcs();
+    while (head_ < queue_.size()) {
+      const std::uint32_t u = queue_[head_++];
+      queued_[u] = 0;
+      discharge(u);
+    }
+  }
+
+  /// The source side: nodes that do not reach t through residual arcs, i.e. those an exact
+  /// relabelling leaves at n (s cannot reach t once the preflow is maximum).
+  std::vector<char> sourceSide() {
+    globalRelabel();
+    std::vector<char> source(n_);
+    for (std::uint32_t v = 0; v < n_; ++v)
+      source[v] = height_[v] == n_;
+    return source;
+  }
+
+private:
+  /// Exact distances to t over residual arcs; n for nodes that cannot reach it.
+  void globalRelabel() {
+    const auto& first = net_.first;
+    const auto& arc = net_.arc;
+    std::fill(height_.begin(), height_.end(), n_);
+    std::vector<std::uint32_t> bfs{t_};
+    height_[t_] = 0;
+    for (std::size_t i = 0; i < bfs.size(); ++i) {
+      const std::uint32_t u = bfs[i];
+      for (std::uint32_t a = first[u]; a < first[u + 1]; ++a) {
+        const std::uint32_t w = arc[a].to;
+        if (w != s_ && height_[w] == n_ && arc[arc[a].rev].cap > 0.0) {
+          height_[w] = height_[u] + 1;
+          bfs.push_back(w);
         }
       }
-      std::copy(first.begin(), first.end() - 1, cur.begin());
-    };
-    auto activate = [&](std::uint32_t v) {
-      if (v != s && v != t && !queued[v] && excess[v] > 0.0 && height[v] < n) {
-        queued[v] = 1;
-        queue.push_back(v);
-      }
-    };
-    globalRelabel();
-    for (std::uint32_t a = first[s]; a < first[s + 1]; ++a) {
+    }
+    std::copy(first.begin(), first.end() - 1, cur_.begin());
+  }
+
+  void activate(std::uint32_t v) {
+    if (v != s_ && v != t_ && !queued_[v] && excess_[v] > 0.0 && height_[v] < n_) {
+      queued_[v] = 1;
+      queue_.push_back(v);
+    }
+  }
+
+  void saturateSourceArcs() {
+    auto& arc = net_.arc;
+    for (std::uint32_t a = net_.first[s_]; a < net_.first[s_ + 1]; ++a) {
       const double c = arc[a].cap;
       if (!(c > 0.0))
         continue;
       arc[a].cap = 0.0;
       arc[arc[a].rev].cap += c;
-      excess[arc[a].to] += c;
+      excess_[arc[a].to] += c;
       activate(arc[a].to);
     }
-    std::size_t relabels = 0;
-    while (head < queue.size()) {
-      const std::uint32_t u = queue[head++];
-      queued[u] = 0;
-      while (excess[u] > 0.0 && height[u] < n) {
-        if (cur[u] == first[u + 1]) {
-          std::uint32_t h = n;
-          for (std::uint32_t a = first[u]; a < first[u + 1]; ++a)
-            if (arc[a].cap > 0.0)
-              h = std::min(h, height[arc[a].to] + 1);
-          height[u] = std::min(h, n);
-          cur[u] = first[u];
-          if (++relabels >= n / 4 + 1) {
-            // Heights drift from the distances: recompute them (every n / 4 relabels: about
-            // twice as fast as every n on a 1M-point model).
-            relabels = 0;
-            globalRelabel();
-            queue.erase(queue.begin(), queue.begin() + static_cast<std::ptrdiff_t>(head));
-            head = 0;
-          }
-          continue;
-        }
-        const std::uint32_t a = cur[u], v = arc[a].to;
-        if (arc[a].cap > 0.0 && height[u] == height[v] + 1) {
-          const double d = std::min(excess[u], arc[a].cap);
-          arc[a].cap -= d;
-          arc[arc[a].rev].cap += d;
-          excess[u] -= d;
-          excess[v] += d;
-          activate(v);
-          if (!(arc[a].cap > 0.0))
-            ++cur[u];
-        } else {
-          ++cur[u];
-        }
+  }
+
+  /// u's new height, one above its lowest residual neighbour's; a global relabelling every
+  /// n / 4 relabels, as heights drift from the distances (about twice as fast as every n on a
+  /// 1M-point model).
+  void relabel(std::uint32_t u) {
+    const auto& first = net_.first;
+    std::uint32_t h = n_;
+    for (std::uint32_t a = first[u]; a < first[u + 1]; ++a)
+      if (net_.arc[a].cap > 0.0)
+        h = std::min(h, height_[net_.arc[a].to] + 1);
+    height_[u] = std::min(h, n_);
+    cur_[u] = first[u];
+    if (++relabels_ >= n_ / 4 + 1) {
+      relabels_ = 0;
+      globalRelabel();
+      queue_.erase(queue_.begin(), queue_.begin() + static_cast<std::ptrdiff_t>(head_));
+      head_ = 0;
+    }
+  }
+
+  /// Push u's excess along admissible arcs, relabelling u when it has none left.
+  void discharge(std::uint32_t u) {
+    auto& arc = net_.arc;
+    while (excess_[u] > 0.0 && height_[u] < n_) {
+      if (cur_[u] == net_.first[u + 1]) {
+        relabel(u);
+        continue;
+      }
+      const std::uint32_t a = cur_[u], v = arc[a].to;
+      if (arc[a].cap > 0.0 && height_[u] == height_[v] + 1) {
+        const double d = std::min(excess_[u], arc[a].cap);
+        arc[a].cap -= d;
+        arc[arc[a].rev].cap += d;
+        excess_[u] -= d;
+        excess_[v] += d;
+        activate(v);
+        if (!(arc[a].cap > 0.0))
+          ++cur_[u];
+      } else {
+        ++cur_[u];
       }
     }
-    // The sink side: nodes that reach t through residual arcs, i.e. those an exact relabelling
-    // leaves below n (s cannot reach t once the preflow is maximum).
-    globalRelabel();
-    std::vector<char> source(n);
-    for (std::uint32_t v = 0; v < n; ++v)
-      source[v] = height[v] == n;
-    return source;
   }
+
+  FlowNetwork& net_;
+  const std::uint32_t s_, t_, n_;
+  std::vector<std::uint32_t> height_, cur_;
+  std::vector<double> excess_;
+  std::vector<char> queued_;
+  std::vector<std::uint32_t> queue_;
+  std::size_t head_ = 0, relabels_ = 0;
 };
+
+inline std::vector<char> FlowNetwork::sourceSide(std::uint32_t s, std::uint32_t t) {
+  std::vector<double>().swap(to_source); // built: free before the search's own arrays
+  std::vector<double>().swap(to_sink);
+  Preflow preflow(*this, s, t);
+  preflow.run();
+  return preflow.sourceSide();
+}
 
 } // namespace pcl_ncut_seg
