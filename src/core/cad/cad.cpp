@@ -2,6 +2,8 @@
 // and the face-orientation similarity of supernodes.
 #include "core/cad/cad.h"
 
+#include "core/common/geometry.h"
+#include "core/graph/shortest_paths.h"
 #include "core/supernodes/refinement.h"
 
 #include <Eigen/Dense>
@@ -9,9 +11,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <queue>
+#include <map>
+#include <optional>
 
 namespace pcl_ncut_seg {
 namespace {
@@ -86,30 +88,15 @@ std::vector<bool> ridgePoints(const CsrGraph& graph, const std::vector<float>& n
 }
 
 std::vector<float> ridgeDistance(const CsrGraph& graph, const std::vector<bool>& ridge) {
-  // Multi-source Dijkstra from every ridge point.
   const std::size_t n = graph.numVertices();
   std::vector<float> phi(n, std::numeric_limits<float>::infinity());
-  using Item = std::pair<float, std::uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  std::vector<std::uint32_t> sources;
   for (std::uint32_t p = 0; p < n; ++p)
     if (ridge[p]) {
       phi[p] = 0.0f;
-      queue.push({0.0f, p});
+      sources.push_back(p);
     }
-  while (!queue.empty()) {
-    const auto [d, p] = queue.top();
-    queue.pop();
-    if (d > phi[p])
-      continue;
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const std::uint32_t q = graph.targets[e];
-      const float nd = d + graph.lengths[e];
-      if (nd < phi[q]) {
-        phi[q] = nd;
-        queue.push({nd, q});
-      }
-    }
-  }
+  multiSourceDijkstra(graph, sources, phi.data(), AnyEdge(), ExpandAll());
   return phi;
 }
 
@@ -129,65 +116,94 @@ CsrGraph transformGraph(const CsrGraph& graph, const std::vector<float>& phi, fl
   return out;
 }
 
-std::map<std::pair<std::uint32_t, std::uint32_t>, double>
-faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label,
-                  const std::vector<bool>& ridge) {
-  const std::size_t n = graph.numVertices();
-  // The face normal of p's supernode at p: a plane fitted to the points of the same supernode
-  // off the ridges within kFitHops kNN steps (a ridge point may lie on the other face). Only
-  // points on a contact need it. Zero when the fit is not planar (fewer than kMinFit points,
-  // or collinear ones).
-  constexpr std::size_t kFitHops = 3, kMinFit = 6;
-  std::vector<std::uint32_t> fit;
-  std::vector<float> normal(3 * n, 0.0f);
-  std::vector<char> done(n, 0);
-  std::vector<std::uint32_t> mark(n, std::numeric_limits<std::uint32_t>::max());
-  std::vector<std::uint32_t> ring;
-  auto faceNormal = [&](std::uint32_t p) {
-    if (done[p])
-      return;
-    done[p] = 1;
-    ring.clear();
-    ring.push_back(p);
-    mark[p] = p;
+namespace {
+/// The face normal of a supernode at its points, fitted on demand (only points on a contact
+/// need one): a plane through the points of the same supernode off the ridges within kFitHops
+/// kNN steps (a ridge point may lie on the other face). Zero when the fit is not planar (fewer
+/// than kMinFit points, or collinear ones).
+class FaceNormals {
+public:
+  FaceNormals(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label,
+              const std::vector<bool>& ridge)
+      : graph_(graph), xyz_(xyz), label_(label), ridge_(ridge), normal_(3 * graph.numVertices()),
+        done_(graph.numVertices(), 0), mark_(graph.numVertices(), kNone) {}
+
+  /// p's face normal (3 floats, zero when there is none).
+  const float* at(std::uint32_t p) {
+    if (!done_[p]) {
+      done_[p] = 1;
+      fit(p);
+    }
+    return &normal_[3 * p];
+  }
+
+private:
+  static constexpr std::size_t kFitHops = 3, kMinFit = 6;
+
+  void fit(std::uint32_t p) {
+    ring_.clear();
+    ring_.push_back(p);
+    mark_[p] = p;
     for (std::size_t step = 0, begin = 0; step < kFitHops; ++step) {
-      const std::size_t end = ring.size();
+      const std::size_t end = ring_.size();
       for (std::size_t i = begin; i < end; ++i) {
-        const std::uint32_t v = ring[i];
-        for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
-          const std::uint32_t q = graph.targets[e];
-          if (label[q] == label[p] && mark[q] != p) {
-            mark[q] = p;
-            ring.push_back(q);
+        const std::uint32_t v = ring_[i];
+        for (std::uint32_t e = graph_.offsets[v]; e < graph_.offsets[v + 1]; ++e) {
+          const std::uint32_t q = graph_.targets[e];
+          if (label_[q] == label_[p] && mark_[q] != p) {
+            mark_[q] = p;
+            ring_.push_back(q);
           }
         }
       }
       begin = end;
     }
-    fit.clear();
-    for (std::uint32_t v : ring)
-      if (ridge.empty() || !ridge[v])
-        fit.push_back(v);
-    if (fit.size() < kMinFit)
+    fit_.clear();
+    for (std::uint32_t v : ring_)
+      if (ridge_.empty() || !ridge_[v])
+        fit_.push_back(v);
+    if (fit_.size() < kMinFit)
       return;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (std::uint32_t v : fit)
-      mean += Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-    mean /= double(fit.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (std::uint32_t v : fit) {
-      const Eigen::Vector3d d = Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - mean;
-      cov += d * d.transpose();
-    }
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-    const Eigen::Vector3d lambda = solver.eigenvalues(); // ascending
-    if (!(lambda[1] > 1e-3 * lambda[2]))
-      return; // collinear: no plane
-    const Eigen::Vector3d v = solver.eigenvectors().col(0);
+    const std::optional<Plane> plane =
+        fitPlane(centredScatter(xyz_, fit_), kFaceFlatness, EigenSolve::kIterative);
+    if (!plane)
+      return;
     for (int d = 0; d < 3; ++d)
-      normal[3 * p + d] = static_cast<float>(v[d]);
-  };
+      normal_[3 * p + d] = static_cast<float>(plane->normal[d]);
+  }
 
+  const CsrGraph& graph_;
+  const float* xyz_;
+  const std::vector<std::uint32_t>& label_;
+  const std::vector<bool>& ridge_;
+  std::vector<float> normal_;
+  std::vector<char> done_;
+  std::vector<std::uint32_t> mark_, ring_, fit_;
+};
+
+bool isZero(const float* v) {
+  return v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f;
+}
+
+/// The median of values (reordered); 90 degrees for none. A few contact edges through points
+/// that belong to neither face must not decide.
+double medianAngle(std::vector<double>& values) {
+  if (values.empty())
+    return 90.0;
+  const std::size_t mid = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + mid, values.end());
+  double median = values[mid];
+  if (values.size() % 2 == 0)
+    median = 0.5 * (median + *std::max_element(values.begin(), values.begin() + mid));
+  return median;
+}
+} // namespace
+
+std::map<std::pair<std::uint32_t, std::uint32_t>, double>
+faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std::uint32_t>& label,
+                  const std::vector<bool>& ridge) {
+  const std::size_t n = graph.numVertices();
+  FaceNormals normals(graph, xyz, label, ridge);
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> samples;
   for (std::uint32_t p = 0; p < n; ++p)
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
@@ -195,31 +211,16 @@ faceContactAngles(const CsrGraph& graph, const float* xyz, const std::vector<std
       if (label[q] <= label[p])
         continue; // each contact edge once, from its smaller label's side
       auto& entry = samples[{label[p], label[q]}];
-      faceNormal(p);
-      faceNormal(q);
-      const float* a = &normal[3 * p];
-      const float* b = &normal[3 * q];
-      if ((a[0] == 0.0f && a[1] == 0.0f && a[2] == 0.0f) ||
-          (b[0] == 0.0f && b[1] == 0.0f && b[2] == 0.0f))
+      const float* a = normals.at(p);
+      const float* b = normals.at(q);
+      if (isZero(a) || isZero(b))
         continue;
       const double c = std::abs(double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]);
       entry.push_back(std::acos(std::min(c, 1.0)) / kDegree);
     }
-  // The median: a few contact edges through points that belong to neither face must not
-  // decide.
   std::map<std::pair<std::uint32_t, std::uint32_t>, double> angles;
-  for (auto& [key, values] : samples) {
-    if (values.empty()) {
-      angles[key] = 90.0;
-      continue;
-    }
-    const std::size_t mid = values.size() / 2;
-    std::nth_element(values.begin(), values.begin() + mid, values.end());
-    double median = values[mid];
-    if (values.size() % 2 == 0)
-      median = 0.5 * (median + *std::max_element(values.begin(), values.begin() + mid));
-    angles[key] = median;
-  }
+  for (auto& [key, values] : samples)
+    angles[key] = medianAngle(values);
   return angles;
 }
 
@@ -256,63 +257,80 @@ WeightedGraph buildCadSupernodeGraph(const Supernodes& supernodes, const Feature
   return g;
 }
 
-Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
-                         const std::vector<std::uint32_t>& label, std::size_t min_points) {
+namespace {
+/// The off-ridge regions of splitAtRidges(): connected parts of a supernode's points off the
+/// ridges, and the small ones merged into neighbours (a union-find over regions).
+struct RidgeRegions {
+  std::vector<std::uint32_t> region; ///< per vertex, its region; kNone on a ridge
+  std::vector<std::uint32_t> size;   ///< per region, its points
+  std::vector<std::uint32_t> target; ///< per region, the region it joined (itself: a root)
+  std::vector<std::uint32_t> total;  ///< per root region, the points it holds
+
+  std::uint32_t root(std::uint32_t i) {
+    while (target[i] != i)
+      i = target[i] = target[target[i]];
+    return i;
+  }
+};
+
+/// The connected parts of each supernode's points off the ridges (by depth-first search from
+/// each unassigned point in order of ids).
+RidgeRegions offRidgeRegions(const CsrGraph& graph, const std::vector<bool>& ridge,
+                             const std::vector<std::uint32_t>& label) {
   const std::size_t n = graph.numVertices();
-  // Regions: connected parts of a supernode's points off the ridges.
-  std::vector<std::uint32_t> region(n, kNone);
-  std::vector<std::uint32_t> size;
+  RidgeRegions out;
+  out.region.assign(n, kNone);
   std::vector<std::uint32_t> stack;
   for (std::uint32_t s = 0; s < n; ++s) {
-    if (ridge[s] || region[s] != kNone)
+    if (ridge[s] || out.region[s] != kNone)
       continue;
-    const auto id = static_cast<std::uint32_t>(size.size());
-    size.push_back(0);
-    region[s] = id;
+    const auto id = static_cast<std::uint32_t>(out.size.size());
+    out.size.push_back(0);
+    out.region[s] = id;
     stack.push_back(s);
     while (!stack.empty()) {
       const std::uint32_t v = stack.back();
       stack.pop_back();
-      ++size[id];
+      ++out.size[id];
       for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
-        if (!ridge[q] && region[q] == kNone && label[q] == label[v]) {
-          region[q] = id;
+        if (!ridge[q] && out.region[q] == kNone && label[q] == label[v]) {
+          out.region[q] = id;
           stack.push_back(q);
         }
       }
     }
   }
-  // A region below min_points joins the off-ridge neighbouring region it shares most edges
-  // with (the smallest first, so that chains of small regions end in a large one).
-  const std::size_t r = size.size();
-  std::vector<std::uint32_t> target(r);
-  for (std::uint32_t i = 0; i < r; ++i)
-    target[i] = i;
-  auto find = [&](std::uint32_t i) {
-    while (target[i] != i)
-      i = target[i] = target[target[i]];
-    return i;
-  };
+  out.target.resize(out.size.size());
+  for (std::uint32_t i = 0; i < out.target.size(); ++i)
+    out.target[i] = i;
+  out.total = out.size;
+  return out;
+}
+
+/// A region below min_points joins the off-ridge neighbouring region it shares most edges
+/// with (the smallest first, so that chains of small regions end in a large one).
+void mergeSmallRegions(const CsrGraph& graph, std::size_t min_points, RidgeRegions& regions) {
+  const std::size_t r = regions.size.size();
   std::vector<std::uint32_t> order(r);
   for (std::uint32_t i = 0; i < r; ++i)
     order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return size[a] < size[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return regions.size[a] < regions.size[b];
+  });
   std::vector<std::vector<std::uint32_t>> members(r);
-  for (std::uint32_t p = 0; p < n; ++p)
-    if (region[p] != kNone)
-      members[region[p]].push_back(p);
-  std::vector<std::uint32_t> total(size);
+  for (std::uint32_t p = 0; p < regions.region.size(); ++p)
+    if (regions.region[p] != kNone)
+      members[regions.region[p]].push_back(p);
   for (std::uint32_t i : order) {
-    if (find(i) != i || total[i] >= min_points)
+    if (regions.root(i) != i || regions.total[i] >= min_points)
       continue;
     std::map<std::uint32_t, std::size_t> shared;
     for (std::uint32_t p : members[i])
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
-        if (region[q] != kNone && find(region[q]) != i)
-          ++shared[find(region[q])];
+        if (regions.region[q] != kNone && regions.root(regions.region[q]) != i)
+          ++shared[regions.root(regions.region[q])];
       }
     std::uint32_t best = kNone;
     std::size_t best_count = 0;
@@ -321,49 +339,53 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
         best = j, best_count = count;
     if (best == kNone)
       continue; // enclosed by ridges: stays on its own
-    target[i] = best;
-    total[best] += total[i];
+    regions.target[i] = best;
+    regions.total[best] += regions.total[i];
     members[best].insert(members[best].end(), members[i].begin(), members[i].end());
     members[i].clear();
   }
-  // A region enclosed by ridges and smaller than two kNN neighbourhoods (twice the mean |N(p)|)
-  // is a gap in a ridge rather than a face: it is dissolved like ridge points.
+}
+
+/// The points that join a region by distance: the ridge points, and the points of a region
+/// enclosed by ridges and smaller than two kNN neighbourhoods (twice the mean |N(p)|), a gap in
+/// a ridge rather than a face.
+std::vector<bool> loosePoints(const CsrGraph& graph, const std::vector<bool>& ridge,
+                              RidgeRegions& regions) {
+  const std::size_t n = graph.numVertices();
   const double tiny = n > 0 ? 2.0 * double(graph.numDirectedEdges()) / double(n) : 0.0;
   std::vector<bool> loose(ridge);
   for (std::uint32_t p = 0; p < n; ++p)
-    if (region[p] != kNone && total[find(region[p])] < tiny)
+    if (regions.region[p] != kNone && regions.total[regions.root(regions.region[p])] < tiny)
       loose[p] = true;
-  // Ridge points join the nearest region on the graph (multi-source Dijkstra).
+  return loose;
+}
+
+/// Per vertex, the nearest region on the graph (a multi-source search from the regions'
+/// points; kNone where none is reachable).
+std::vector<std::uint32_t> nearestRegion(const CsrGraph& graph, const std::vector<bool>& loose,
+                                         RidgeRegions& regions) {
+  const std::size_t n = graph.numVertices();
   std::vector<float> dist(n, std::numeric_limits<float>::infinity());
-  std::vector<std::uint32_t> owner(n, kNone);
-  using Item = std::pair<float, std::uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  std::vector<std::uint32_t> owner(n, kNone), sources;
   for (std::uint32_t p = 0; p < n; ++p)
     if (!loose[p]) {
-      owner[p] = find(region[p]);
+      owner[p] = regions.root(regions.region[p]);
       dist[p] = 0.0f;
-      queue.push({0.0f, p});
+      sources.push_back(p);
     }
-  while (!queue.empty()) {
-    const auto [d, p] = queue.top();
-    queue.pop();
-    if (d > dist[p])
-      continue;
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-      const std::uint32_t q = graph.targets[e];
-      const float nd = d + graph.lengths[e];
-      if (nd < dist[q] || (nd == dist[q] && owner[p] < owner[q])) {
-        dist[q] = nd;
-        owner[q] = owner[p];
-        queue.push({nd, q});
-      }
-    }
-  }
-  // Then each ridge point joins the face it lies on: among the regions that own a point within
-  // a few kNN steps, the one whose plane, fitted to its off-ridge points there, passes nearest.
-  // The nearest region alone would cut the corner of an acute face.
+  multiSourceDijkstra(graph, sources, dist.data(), AnyEdge(), ExpandAll(), owner.data());
+  return owner;
+}
+
+/// Each loose point joins the face it lies on: among the regions that own a point within a few
+/// kNN steps, the one whose plane, fitted to its off-ridge points there, passes nearest (the
+/// nearest region alone would cut the corner of an acute face). Returns the owners refined.
+std::vector<std::uint32_t> ridgePointFaces(const CsrGraph& graph, const float* xyz,
+                                           const std::vector<bool>& loose,
+                                           const std::vector<std::uint32_t>& owner) {
   constexpr int kHops = 4;
   constexpr std::size_t kMinFit = 6;
+  const std::size_t n = graph.numVertices();
   std::vector<std::uint32_t> refined(owner);
   std::vector<std::uint32_t> seen(n, kNone), ring;
   std::map<std::uint32_t, std::vector<std::uint32_t>> near;
@@ -392,31 +414,32 @@ Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vec
     for (const auto& [region_id, points] : near) {
       if (points.size() < kMinFit)
         continue;
-      Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-      for (std::uint32_t v : points)
-        mean += Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-      mean /= double(points.size());
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (std::uint32_t v : points) {
-        const Eigen::Vector3d d =
-            Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]) - mean;
-        cov += d * d.transpose();
-      }
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-      if (!(solver.eigenvalues()[1] > 1e-3 * solver.eigenvalues()[2]))
+      const std::optional<Plane> plane =
+          fitPlane(centredScatter(xyz, points), kFaceFlatness, EigenSolve::kIterative);
+      if (!plane)
         continue; // collinear: no plane
-      const double distance = std::abs(solver.eigenvectors().col(0).dot(at - mean));
+      const double distance = std::abs(plane->normal.dot(at - plane->centroid));
       if (distance < best) {
         best = distance;
         refined[p] = region_id;
       }
     }
   }
-  owner.swap(refined);
+  return refined;
+}
+} // namespace
 
+Supernodes splitAtRidges(const CsrGraph& graph, const float* xyz, const std::vector<bool>& ridge,
+                         const std::vector<std::uint32_t>& label, std::size_t min_points) {
+  const std::size_t n = graph.numVertices();
+  RidgeRegions regions = offRidgeRegions(graph, ridge, label);
+  mergeSmallRegions(graph, min_points, regions);
+  const std::vector<bool> loose = loosePoints(graph, ridge, regions);
+  const std::vector<std::uint32_t> owner =
+      ridgePointFaces(graph, xyz, loose, nearestRegion(graph, loose, regions));
   // Compact ids in order of each supernode's first point, which is its origin; a component
   // made of ridge points only keeps its old supernode (its key follows the regions' keys).
-  const std::uint32_t num_regions = static_cast<std::uint32_t>(r);
+  const auto num_regions = static_cast<std::uint32_t>(regions.size.size());
   std::uint32_t num_labels = 0;
   std::vector<std::uint32_t> key(n);
   for (std::uint32_t p = 0; p < n; ++p) {

@@ -4,14 +4,13 @@
 #include "core/common/threads.h"
 #include "core/cut/concavity.h"
 #include "core/cut/flow_network.h"
+#include "core/graph/shortest_paths.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <map>
-#include <queue>
 #include <utility>
 
 namespace pcl_ncut_seg {
@@ -88,157 +87,203 @@ double squaredRadius(const std::vector<float>& radii, std::uint32_t p) {
   return static_cast<double>(radii[p]) * static_cast<double>(radii[p]);
 }
 
-/// The recuts of refineBoundaries() in steps: the segments' areas and sizes, the frontier
-/// (points with a neighbour in another segment) and the band search's arrays.
-struct BoundaryRecut {
-  const CsrGraph& graph;
-  const std::vector<float>& radii;
-  const std::vector<std::uint8_t>& crease;
-  const BoundaryParams& params;
-  std::vector<std::uint32_t>& segment;
-  const bool use_crease;
-  std::array<double, 256> factor; ///< per crease byte, exp(-kBoundaryCreaseWeight c)
-  std::vector<double> seg_area;
-  std::vector<std::size_t> seg_count;
-  std::vector<std::uint32_t> frontier; ///< in order of ids, then as points joined it
-  std::vector<char> in_frontier;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs; ///< touching segments, ascending
-  static constexpr float kFar = std::numeric_limits<float>::infinity();
-  std::vector<float> dist;         ///< band search: distance from the boundary, kFar between
-  std::vector<std::int32_t> local; ///< -1; in a band search -2: settled; >= 0: index in the band
-  using Item = std::pair<float, std::uint32_t>; ///< (distance, vertex): ties by vertex id
-
-  BoundaryRecut(const CsrGraph& graph, const std::vector<float>& radii,
-                const std::vector<std::uint8_t>& crease, const BoundaryParams& params,
-                std::vector<std::uint32_t>& segment, std::size_t num_segments)
-      : graph(graph), radii(radii), crease(crease), params(params), segment(segment),
-        use_crease(!crease.empty() && crease.size() == graph.numDirectedEdges()),
-        seg_area(num_segments, 0.0), seg_count(num_segments, 0) {
-    for (std::size_t c = 0; c < factor.size(); ++c)
-      factor[c] =
-          use_crease ? std::exp(-kBoundaryCreaseWeight * static_cast<double>(c) / 16.0) : 1.0;
-    const std::size_t n = graph.numVertices();
-    for (std::uint32_t p = 0; p < n; ++p) {
-      seg_area[segment[p]] += squaredRadius(radii, p);
-      ++seg_count[segment[p]];
-    }
-    findFrontier();
-    dist.assign(n, kFar);
-    local.assign(n, -1);
-  }
-
-  /// Edge e's capacity in the minimum cut: its length, lowered across a concave crease.
-  double capacity(std::uint32_t e) const {
-    return static_cast<double>(graph.lengths[e]) * (use_crease ? factor[crease[e]] : 1.0);
-  }
-
-  /// p has a neighbour in another segment.
-  bool onFrontier(std::uint32_t p) const {
-    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-      if (segment[graph.targets[e]] != segment[p])
-        return true;
-    return false;
-  }
-
-  /// The frontier, and the pairs of touching segments in order of ids.
-  void findFrontier() {
-    const std::size_t n = graph.numVertices();
-    in_frontier.assign(n, 0);
-    for (std::uint32_t p = 0; p < n; ++p)
+/// The frontier of a segmentation (points with a neighbour in another segment) and the pairs
+/// of touching segments, kept up to date as recuts move points.
+class Frontier {
+public:
+  Frontier(const CsrGraph& graph, const std::vector<std::uint32_t>& segment)
+      : graph_(graph), segment_(segment), in_(graph.numVertices(), 0) {
+    for (std::uint32_t p = 0; p < graph.numVertices(); ++p)
       for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
         const std::uint32_t q = graph.targets[e];
         if (segment[q] == segment[p])
           continue;
-        if (!in_frontier[p]) {
-          in_frontier[p] = 1;
-          frontier.push_back(p);
+        if (!in_[p]) {
+          in_[p] = 1;
+          points_.push_back(p);
         }
         if (segment[p] < segment[q])
-          pairs.emplace_back(segment[p], segment[q]);
+          pairs_.emplace_back(segment[p], segment[q]);
       }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    std::sort(pairs_.begin(), pairs_.end());
+    pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
   }
 
-  /// Seeds of the geodesic distance from the boundary between x and y on x's side: x's points
-  /// on it start at half their shortest edge across it (added to touched).
-  void seedSide(std::uint32_t x, std::uint32_t y, std::vector<std::uint32_t>& touched) {
-    for (std::uint32_t p : frontier) {
-      if (segment[p] != x)
-        continue;
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
-        if (segment[graph.targets[e]] == y && 0.5f * graph.lengths[e] < dist[p]) {
-          if (dist[p] == kFar)
-            touched.push_back(p);
-          dist[p] = 0.5f * graph.lengths[e];
-        }
-    }
-  }
+  /// In order of ids, then as points joined it.
+  const std::vector<std::uint32_t>& points() const { return points_; }
+  /// The touching segments before any recut, ascending.
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs() const { return pairs_; }
 
-  /// x's side of the band with y: x's points in order of distance from the boundary, settled
-  /// while they hold at most the band fraction of x's area and are closer than bound, which the
-  /// first point left out lowers (neither side's band may reach past it).
-  void growSide(std::uint32_t x, std::uint32_t y, float& bound, std::vector<std::uint32_t>& settled,
-                std::vector<std::uint32_t>& touched) {
-    const std::size_t first_seed = touched.size();
-    seedSide(x, y, touched);
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-    for (std::size_t i = first_seed; i < touched.size(); ++i)
-      queue.emplace(dist[touched[i]], touched[i]);
-    const double cap = *params.band * seg_area[x];
-    double held = 0.0;
-    while (!queue.empty()) {
-      const auto [d, p] = queue.top();
-      queue.pop();
-      if (d > dist[p] || local[p] == -2)
-        continue;
-      if (d >= bound || held + squaredRadius(radii, p) > cap) {
-        bound = std::min(bound, d); // neither side's band may reach this far
-        break;
-      }
-      local[p] = -2;
-      held += squaredRadius(radii, p);
-      settled.push_back(p);
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        const float dq = d + graph.lengths[e];
-        if (segment[q] == x && local[q] != -2 && dq < dist[q]) {
-          if (dist[q] == kFar)
-            touched.push_back(q);
-          dist[q] = dq;
-          queue.emplace(dq, q);
+  /// After a recut: only the changed points and their neighbours can leave or join (the list
+  /// keeps its order, then the new ones).
+  void update(const std::vector<std::uint32_t>& changed_points) {
+    bool left = false;
+    for (std::uint32_t p : changed_points)
+      for (std::uint32_t e = graph_.offsets[p]; e <= graph_.offsets[p + 1]; ++e) {
+        const std::uint32_t q = e < graph_.offsets[p + 1] ? graph_.targets[e] : p;
+        if (in_[q] == 1 && !onFrontier(q)) {
+          in_[q] = 0;
+          left = true;
         }
       }
+    if (left) {
+      std::size_t kept = 0;
+      for (std::uint32_t p : points_)
+        if (in_[p])
+          points_[kept++] = p;
+      points_.resize(kept);
     }
+    for (std::uint32_t p : changed_points)
+      for (std::uint32_t e = graph_.offsets[p]; e <= graph_.offsets[p + 1]; ++e) {
+        const std::uint32_t q = e < graph_.offsets[p + 1] ? graph_.targets[e] : p;
+        if (!in_[q] && onFrontier(q)) {
+          in_[q] = 1;
+          points_.push_back(q);
+        }
+      }
   }
 
-  /// The band (fuzzy region) of a and b: the settled points of both sides closer than the
-  /// final bound, by id; empty when a side has no area to bound it by.
-  std::vector<std::uint32_t> bandOf(std::uint32_t a, std::uint32_t b) {
+private:
+  bool onFrontier(std::uint32_t p) const {
+    for (std::uint32_t e = graph_.offsets[p]; e < graph_.offsets[p + 1]; ++e)
+      if (segment_[graph_.targets[e]] != segment_[p])
+        return true;
+    return false;
+  }
+
+  const CsrGraph& graph_;
+  const std::vector<std::uint32_t>& segment_;
+  std::vector<char> in_;
+  std::vector<std::uint32_t> points_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
+};
+
+/// The band (fuzzy region) of two touching segments: each side's points in order of geodesic
+/// distance from their boundary, while they hold at most the band fraction of the side's area.
+class BandSearch {
+public:
+  BandSearch(const CsrGraph& graph, const std::vector<float>& radii,
+             const std::vector<std::uint32_t>& segment, double band)
+      : graph_(graph), radii_(radii), segment_(segment), band_(band),
+        dist_(graph.numVertices(), kFar) {}
+
+  /// The band of a and b: the settled points of both sides closer than the final bound, by id;
+  /// empty when a side has no area to bound it by.
+  std::vector<std::uint32_t> bandOf(std::uint32_t a, std::uint32_t b,
+                                    const std::vector<double>& seg_area,
+                                    const std::vector<std::uint32_t>& frontier) {
     if (!(seg_area[a] > 0.0) || !(seg_area[b] > 0.0))
       return {};
     // The side with less area first: its distance bound also bounds the other side's search.
     std::uint32_t sides[2] = {a, b};
     if (seg_area[b] < seg_area[a])
       std::swap(sides[0], sides[1]);
-    std::vector<std::uint32_t> settled[2], touched;
+    std::vector<std::uint32_t> settled[2];
+    touched_.clear();
     float bound = kFar;
     for (int s = 0; s < 2; ++s)
-      growSide(sides[s], sides[1 - s], bound, settled[s], touched);
+      growSide(sides[s], sides[1 - s], band_ * seg_area[sides[s]], frontier, bound, settled[s]);
     std::vector<std::uint32_t> band;
     for (int s = 0; s < 2; ++s)
-      for (std::uint32_t p : settled[s]) {
-        if (dist[p] < bound)
+      for (std::uint32_t p : settled[s])
+        if (dist_[p] < bound)
           band.push_back(p);
-        local[p] = -1;
-      }
-    for (std::uint32_t p : touched)
-      dist[p] = kFar;
+    for (std::uint32_t p : touched_)
+      dist_[p] = kFar;
     std::sort(band.begin(), band.end());
     return band;
   }
 
-  /// The network of the band (local holds each point's index): its m points, the source m
+private:
+  static constexpr float kFar = std::numeric_limits<float>::infinity();
+
+  /// x's side of the band with y: x's points on the boundary start at half their shortest edge
+  /// across it; points are settled while they hold at most cap of x's area and are closer than
+  /// bound, which the first point left out lowers (neither side's band may reach past it).
+  void growSide(std::uint32_t x, std::uint32_t y, double cap,
+                const std::vector<std::uint32_t>& frontier, float& bound,
+                std::vector<std::uint32_t>& settled) {
+    const std::size_t first_seed = touched_.size();
+    for (std::uint32_t p : frontier) {
+      if (segment_[p] != x)
+        continue;
+      for (std::uint32_t e = graph_.offsets[p]; e < graph_.offsets[p + 1]; ++e)
+        if (segment_[graph_.targets[e]] == y && 0.5f * graph_.lengths[e] < dist_[p]) {
+          if (dist_[p] == kFar)
+            touched_.push_back(p);
+          dist_[p] = 0.5f * graph_.lengths[e];
+        }
+    }
+    const std::vector<std::uint32_t> seeds(touched_.begin() + first_seed, touched_.end());
+    double held = 0.0;
+    auto settle = [&](std::uint32_t p, float d) {
+      if (d >= bound || held + squaredRadius(radii_, p) > cap) {
+        bound = std::min(bound, d); // neither side's band may reach this far
+        return Settle::kStop;
+      }
+      held += squaredRadius(radii_, p);
+      settled.push_back(p);
+      return Settle::kExpand;
+    };
+    auto inside = [&](std::uint32_t, std::uint32_t q, float) { return segment_[q] == x; };
+    multiSourceDijkstra(graph_, seeds, dist_.data(), inside, settle, nullptr, &touched_);
+  }
+
+  const CsrGraph& graph_;
+  const std::vector<float>& radii_;
+  const std::vector<std::uint32_t>& segment_;
+  const double band_;
+  std::vector<float> dist_; ///< distance from the boundary; kFar outside a search
+  std::vector<std::uint32_t> touched_;
+};
+
+/// The recuts of refineBoundaries(): the segments' areas and sizes, the frontier and the band
+/// search, and per pair the minimum cut over the band.
+class BoundaryRecut {
+public:
+  BoundaryRecut(const CsrGraph& graph, const std::vector<float>& radii,
+                const std::vector<std::uint8_t>& crease, const BoundaryParams& params,
+                std::vector<std::uint32_t>& segment, std::size_t num_segments)
+      : graph_(graph), radii_(radii), crease_(crease), segment_(segment),
+        use_crease_(!crease.empty() && crease.size() == graph.numDirectedEdges()),
+        seg_area_(num_segments, 0.0), seg_count_(num_segments, 0), frontier_(graph, segment),
+        search_(graph, radii, segment, *params.band), local_(graph.numVertices(), -1) {
+    for (std::size_t c = 0; c < factor_.size(); ++c)
+      factor_[c] =
+          use_crease_ ? std::exp(-kBoundaryCreaseWeight * static_cast<double>(c) / 16.0) : 1.0;
+    for (std::uint32_t p = 0; p < graph.numVertices(); ++p) {
+      seg_area_[segment[p]] += squaredRadius(radii, p);
+      ++seg_count_[segment[p]];
+    }
+  }
+
+  /// The pairs of touching segments in order of ids (as they touch before any recut).
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs() const {
+    return frontier_.pairs();
+  }
+
+  /// Recut the boundary of a and b with a minimum cut over their band.
+  void recut(std::uint32_t a, std::uint32_t b) {
+    const std::vector<std::uint32_t> band = search_.bandOf(a, b, seg_area_, frontier_.points());
+    if (band.empty())
+      return;
+    const auto m = static_cast<std::uint32_t>(band.size());
+    for (std::uint32_t i = 0; i < m; ++i)
+      local_[band[i]] = static_cast<std::int32_t>(i);
+    FlowNetwork net = bandNetwork(band, a, b);
+    for (std::uint32_t p : band)
+      local_[p] = -1;
+    const std::vector<char> source_side = net.sourceSide(m, m + 1);
+    frontier_.update(applyCut(band, source_side, a, b));
+  }
+
+private:
+  /// Edge e's capacity in the minimum cut: its length, lowered across a concave crease.
+  double capacity(std::uint32_t e) const {
+    return static_cast<double>(graph_.lengths[e]) * (use_crease_ ? factor_[crease_[e]] : 1.0);
+  }
+
+  /// The network of the band (local_ holds each point's index): its m points, the source m
   /// (a outside the band) and the sink m + 1 (b outside the band); points of other segments
   /// take no part.
   FlowNetwork bandNetwork(const std::vector<std::uint32_t>& band, std::uint32_t a,
@@ -248,23 +293,23 @@ struct BoundaryRecut {
     net.reset(m);
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = band[i];
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        if (local[q] >= 0)
+      for (std::uint32_t e = graph_.offsets[p]; e < graph_.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph_.targets[e];
+        if (local_[q] >= 0)
           ++net.first[i + 1];
-        else if (segment[q] == a)
+        else if (segment_[q] == a)
           net.to_source[i] += capacity(e);
-        else if (segment[q] == b)
+        else if (segment_[q] == b)
           net.to_sink[i] += capacity(e);
       }
     }
     net.allocateArcs();
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t p = band[i];
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        if (local[q] >= 0 && q > p)
-          net.addPair(i, static_cast<std::uint32_t>(local[q]), capacity(e), capacity(e));
+      for (std::uint32_t e = graph_.offsets[p]; e < graph_.offsets[p + 1]; ++e) {
+        const std::uint32_t q = graph_.targets[e];
+        if (local_[q] >= 0 && q > p)
+          net.addPair(i, static_cast<std::uint32_t>(local_[q]), capacity(e), capacity(e));
       }
       net.addTerminalArcs(i);
     }
@@ -282,71 +327,39 @@ struct BoundaryRecut {
     std::vector<std::uint32_t> label(m);
     for (std::uint32_t i = 0; i < m; ++i) {
       label[i] = source_side[i] ? a : b;
-      if (label[i] != segment[band[i]]) {
+      if (label[i] != segment_[band[i]]) {
         ++moved;
         to_a += label[i] == a ? 1 : -1;
       }
     }
     // (The points outside the band keep each segment non-empty; this guards zero areas.)
-    if (moved == 0 || static_cast<std::int64_t>(seg_count[a]) + to_a <= 0 ||
-        static_cast<std::int64_t>(seg_count[b]) - to_a <= 0)
+    if (moved == 0 || static_cast<std::int64_t>(seg_count_[a]) + to_a <= 0 ||
+        static_cast<std::int64_t>(seg_count_[b]) - to_a <= 0)
       return {};
-    seg_count[a] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[a]) + to_a);
-    seg_count[b] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count[b]) - to_a);
+    seg_count_[a] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count_[a]) + to_a);
+    seg_count_[b] = static_cast<std::size_t>(static_cast<std::int64_t>(seg_count_[b]) - to_a);
     std::vector<std::uint32_t> changed_points;
     for (std::uint32_t i = 0; i < m; ++i)
-      if (label[i] != segment[band[i]]) {
-        seg_area[segment[band[i]]] -= squaredRadius(radii, band[i]);
-        seg_area[label[i]] += squaredRadius(radii, band[i]);
-        segment[band[i]] = label[i];
+      if (label[i] != segment_[band[i]]) {
+        seg_area_[segment_[band[i]]] -= squaredRadius(radii_, band[i]);
+        seg_area_[label[i]] += squaredRadius(radii_, band[i]);
+        segment_[band[i]] = label[i];
         changed_points.push_back(band[i]);
       }
     return changed_points;
   }
 
-  /// The frontier after a recut: only the changed points and their neighbours can leave or
-  /// join it (the list keeps its order, then the new ones).
-  void updateFrontier(const std::vector<std::uint32_t>& changed_points) {
-    bool left = false;
-    for (std::uint32_t p : changed_points)
-      for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
-        if (in_frontier[q] == 1 && !onFrontier(q)) {
-          in_frontier[q] = 0;
-          left = true;
-        }
-      }
-    if (left) {
-      std::size_t kept = 0;
-      for (std::uint32_t p : frontier)
-        if (in_frontier[p])
-          frontier[kept++] = p;
-      frontier.resize(kept);
-    }
-    for (std::uint32_t p : changed_points)
-      for (std::uint32_t e = graph.offsets[p]; e <= graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = e < graph.offsets[p + 1] ? graph.targets[e] : p;
-        if (!in_frontier[q] && onFrontier(q)) {
-          in_frontier[q] = 1;
-          frontier.push_back(q);
-        }
-      }
-  }
-
-  /// Recut the boundary of a and b with a minimum cut over their band.
-  void recut(std::uint32_t a, std::uint32_t b) {
-    const std::vector<std::uint32_t> band = bandOf(a, b);
-    if (band.empty())
-      return;
-    const auto m = static_cast<std::uint32_t>(band.size());
-    for (std::uint32_t i = 0; i < m; ++i)
-      local[band[i]] = static_cast<std::int32_t>(i);
-    FlowNetwork net = bandNetwork(band, a, b);
-    for (std::uint32_t p : band)
-      local[p] = -1;
-    const std::vector<char> source_side = net.sourceSide(m, m + 1);
-    updateFrontier(applyCut(band, source_side, a, b));
-  }
+  const CsrGraph& graph_;
+  const std::vector<float>& radii_;
+  const std::vector<std::uint8_t>& crease_;
+  std::vector<std::uint32_t>& segment_;
+  const bool use_crease_;
+  std::array<double, 256> factor_; ///< per crease byte, exp(-kBoundaryCreaseWeight c)
+  std::vector<double> seg_area_;
+  std::vector<std::size_t> seg_count_;
+  Frontier frontier_;
+  BandSearch search_;
+  std::vector<std::int32_t> local_; ///< -1, or during a recut the point's index in the band
 };
 
 /// Per component (of segmentComponents()), whether it is stray: in a segment with more
@@ -447,7 +460,7 @@ std::size_t refineBoundaries(const CsrGraph& graph, const std::vector<float>& ra
   {
     // Each pair of touching segments in order of ids (the pairs as they touch before).
     BoundaryRecut recuts(graph, radii, crease, params, segment, num_segments);
-    for (const auto& [a, b] : recuts.pairs)
+    for (const auto& [a, b] : recuts.pairs())
       recuts.recut(a, b);
   }
   reattachPieces(graph, radii, original, segment, num_segments);

@@ -1,5 +1,6 @@
 // Concave creases between supernodes (an extension of Sec. 5.1).
 #include "core/cut/concavity.h"
+#include "core/common/geometry.h"
 #include "core/common/threads.h"
 
 #include <Eigen/Dense>
@@ -12,56 +13,30 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 
 namespace pcl_ncut_seg {
 
 namespace {
 
-/// The least-squares plane's unit normal through p and its graph neighbours, or false when they
-/// have no plane (fewer than 3 points, collinear, coincident). The moments are summed in float
-/// relative to p (exact enough at the neighbourhood's scale, and far from the origin too); the
-/// 3x3 eigenproblem is solved in closed form.
-bool fitPlane(const CsrGraph& graph, const float* xyz, std::size_t p, float* normal) {
+/// The least-squares plane's unit normal through p and its graph neighbours (3 floats to
+/// normal), or false when they have no plane. The moments are summed in float relative to p
+/// (exact enough at the neighbourhood's scale, and far from the origin too); the 3x3
+/// eigenproblem is solved in closed form.
+bool pointNormal(const CsrGraph& graph, const float* xyz, std::size_t p, float* normal) {
   const std::uint32_t begin = graph.offsets[p], end = graph.offsets[p + 1];
   if (end - begin < 2)
     return false;
-  const float px = xyz[3 * p], py = xyz[3 * p + 1], pz = xyz[3 * p + 2];
-  float sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
-  for (std::uint32_t e = begin; e < end; ++e) {
-    const float* q = &xyz[3 * graph.targets[e]];
-    const float x = q[0] - px, y = q[1] - py, z = q[2] - pz;
-    sx += x;
-    sy += y;
-    sz += z;
-    sxx += x * x;
-    sxy += x * y;
-    sxz += x * z;
-    syy += y * y;
-    syz += y * z;
-    szz += z * z;
-  }
-  // Covariance about the mean of the m points (p itself is at the origin).
-  const double m = static_cast<double>(end - begin + 1);
-  const double mx = sx / m, my = sy / m, mz = sz / m;
-  Eigen::Matrix3d cov;
-  cov(0, 0) = sxx - m * mx * mx;
-  cov(1, 1) = syy - m * my * my;
-  cov(2, 2) = szz - m * mz * mz;
-  cov(0, 1) = cov(1, 0) = sxy - m * mx * my;
-  cov(0, 2) = cov(2, 0) = sxz - m * mx * mz;
-  cov(1, 2) = cov(2, 1) = syz - m * my * mz;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(cov);
-  const Eigen::Vector3d& lambda = solver.eigenvalues(); // ascending
-  // Collinear or coincident: the middle eigenvalue vanishes (up to float rounding of the sums).
-  if (!(lambda[1] > 1e-5 * lambda[2]) || !(lambda[2] > 0.0))
-    return false;
-  const Eigen::Vector3d n = solver.eigenvectors().col(0);
-  const double length = n.norm();
-  if (!(length > 0.0))
+  ShiftedMoments<float> moments(&xyz[3 * p]);
+  moments.add(&xyz[3 * p]);
+  for (std::uint32_t e = begin; e < end; ++e)
+    moments.add(&xyz[3 * graph.targets[e]]);
+  const std::optional<Plane> plane = fitPlane(moments.scatter(MeanProduct::kColumnFirst),
+                                              kNotCollinearFloat, EigenSolve::kClosedForm);
+  if (!plane)
     return false;
   for (int d = 0; d < 3; ++d)
-    normal[d] = static_cast<float>(n[d] / length);
+    normal[d] = static_cast<float>(plane->normal[d]);
   return true;
 }
 
@@ -120,26 +95,28 @@ private:
 
 } // namespace
 
-std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsigned num_threads,
-                                   const float* viewpoint) {
-  const std::size_t n = graph.numVertices();
-  std::vector<float> normals(3 * n, 0.0f);
-  // The plane fits are independent: the same result for any number of threads.
-  const auto sn = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
-  for (std::int64_t p = 0; p < sn; ++p)
-    fitPlane(graph, xyz, static_cast<std::size_t>(p), &normals[3 * p]);
+namespace {
+Eigen::Vector3d point(const float* xyz, std::size_t v) {
+  return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
+}
 
-  // Orientation: Prim's tree over 1 - |n_p . n_q|, grown over each component from its first
-  // vertex. The tree does not depend on where it starts (up to ties), so the component is then
-  // turned as a whole (below).
-  auto dot = [&](std::size_t a, std::size_t b) {
-    return normals[3 * a] * normals[3 * b] + normals[3 * a + 1] * normals[3 * b + 1] +
-           normals[3 * a + 2] * normals[3 * b + 2];
-  };
-  auto point = [&](std::size_t v) {
-    return Eigen::Vector3d(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]);
-  };
+float dot(const std::vector<float>& normals, std::size_t a, std::size_t b) {
+  return normals[3 * a] * normals[3 * b] + normals[3 * a + 1] * normals[3 * b + 1] +
+         normals[3 * a + 2] * normals[3 * b + 2];
+}
+
+/// The components of the graph, each with its normals made consistent and its centroid.
+struct OrientedComponents {
+  std::vector<std::uint32_t> component; ///< per vertex
+  std::vector<Eigen::Vector3d> centroid;
+};
+
+/// Orientation: Prim's tree over 1 - |n_p . n_q|, grown over each component from its first
+/// vertex, each normal turned to agree with its tree parent's. The tree does not depend on
+/// where it starts (up to ties), so a component may then be turned as a whole.
+OrientedComponents orientAlongTree(const CsrGraph& graph, const float* xyz,
+                                   std::vector<float>& normals) {
+  const std::size_t n = graph.numVertices();
   // key[v]: v's best bucket so far (or kUnseen, kDone). parent[v]: while v is queued, the tree
   // vertex it came from; once v is done, its component.
   constexpr std::uint16_t kUnseen = 0xFFFF, kDone = 0xFFFE;
@@ -163,17 +140,17 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
       if (key[v] != k)
         continue; // done, or queued again with a lower key
       key[v] = kDone;
-      if (v != parent[v] && dot(v, parent[v]) < 0.0f)
+      if (v != parent[v] && dot(normals, v, parent[v]) < 0.0f)
         for (int d = 0; d < 3; ++d)
           normals[3 * v + d] = -normals[3 * v + d];
       parent[v] = c;
-      centroid[c] += point(v);
+      centroid[c] += point(xyz, v);
       ++size[c];
       for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
         const std::uint32_t w = graph.targets[e];
         if (key[w] == kDone)
           continue;
-        const std::uint16_t kw = BucketQueue::key(1.0f - std::abs(dot(v, w)));
+        const std::uint16_t kw = BucketQueue::key(1.0f - std::abs(dot(normals, v, w)));
         if (kw < key[w]) {
           key[w] = kw;
           parent[w] = v;
@@ -182,32 +159,37 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
       }
     }
   }
-  std::vector<std::uint16_t>().swap(key);
-  const std::size_t num_comps = centroid.size();
-  for (std::size_t c = 0; c < num_comps; ++c)
+  for (std::size_t c = 0; c < centroid.size(); ++c)
     centroid[c] /= static_cast<double>(size[c]);
-  // Each component is turned so that its normals point outwards, by the more decisive of two
-  // tests. (a) At the point farthest from the centroid a smooth closed surface touches the
-  // sphere through it, so its normal is parallel to p - c: the cosine tells the side, and how
-  // well the fitted plane is the tangent plane there (near 0 at the tip of a thin fin, whose
-  // plane holds both sides). (b) Over a closed surface the sum of n . (p - c) is 3 times the
-  // enclosed volume for outward normals (the divergence theorem; the points stand for equal
-  // areas), so its sign tells the side, and its ratio to the sum of |n . (p - c)| how
-  // consistently the points agree (low where thin parts took the wrong side).
+  return {std::move(parent), std::move(centroid)};
+}
+
+/// Per component, whether to turn it so that its normals point outwards (or, with a
+/// viewpoint, face the sensor). Of two tests the more decisive: (a) at the point farthest from
+/// the centroid a smooth closed surface touches the sphere through it, so its normal is
+/// parallel to p - c: the cosine tells the side, and how well the fitted plane is the tangent
+/// plane there (near 0 at the tip of a thin fin, whose plane holds both sides). (b) Over a
+/// closed surface the sum of n . (p - c) is 3 times the enclosed volume for outward normals
+/// (the divergence theorem; the points stand for equal areas), so its sign tells the side, and
+/// its ratio to the sum of |n . (p - c)| how consistently the points agree (low where thin
+/// parts took the wrong side).
+std::vector<char> componentsToTurn(const float* xyz, const std::vector<float>& normals,
+                                   const OrientedComponents& comps, const float* viewpoint) {
+  const std::size_t num_comps = comps.centroid.size();
   std::vector<double> flux(num_comps, 0.0), spread(num_comps, 0.0), far(num_comps, -1.0);
   std::vector<double> seed_cos(num_comps, 0.0), facing(num_comps, 0.0);
-  for (std::size_t v = 0; v < n; ++v) {
-    const std::uint32_t c = parent[v];
+  for (std::size_t v = 0; v < comps.component.size(); ++v) {
+    const std::uint32_t c = comps.component[v];
     if (viewpoint) {
       const Eigen::Vector3d to_sensor =
-          Eigen::Vector3d(viewpoint[0], viewpoint[1], viewpoint[2]) - point(v);
+          Eigen::Vector3d(viewpoint[0], viewpoint[1], viewpoint[2]) - point(xyz, v);
       const double d = to_sensor.norm();
       if (d > 0.0)
         facing[c] += (normals[3 * v] * to_sensor[0] + normals[3 * v + 1] * to_sensor[1] +
                       normals[3 * v + 2] * to_sensor[2]) /
                      d;
     }
-    const Eigen::Vector3d out = point(v) - centroid[c];
+    const Eigen::Vector3d out = point(xyz, v) - comps.centroid[c];
     const double along =
         normals[3 * v] * out[0] + normals[3 * v + 1] * out[1] + normals[3 * v + 2] * out[2];
     flux[c] += along;
@@ -227,8 +209,23 @@ std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsi
                         : (std::abs(seed_cos[c]) >= std::abs(consistency) ? seed_cos[c]
                                                                           : consistency) < 0.0;
   }
+  return turn;
+}
+} // namespace
+
+std::vector<float> orientedNormals(const CsrGraph& graph, const float* xyz, unsigned num_threads,
+                                   const float* viewpoint) {
+  const std::size_t n = graph.numVertices();
+  std::vector<float> normals(3 * n, 0.0f);
+  // The plane fits are independent: the same result for any number of threads.
+  const auto sn = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static, 4096) num_threads(usableThreads(num_threads))
+  for (std::int64_t p = 0; p < sn; ++p)
+    pointNormal(graph, xyz, static_cast<std::size_t>(p), &normals[3 * p]);
+  const OrientedComponents comps = orientAlongTree(graph, xyz, normals);
+  const std::vector<char> turn = componentsToTurn(xyz, normals, comps, viewpoint);
   for (std::size_t v = 0; v < n; ++v)
-    if (turn[parent[v]])
+    if (turn[comps.component[v]])
       for (int d = 0; d < 3; ++d)
         normals[3 * v + d] = -normals[3 * v + d];
   return normals;

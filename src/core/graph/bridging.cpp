@@ -1,5 +1,6 @@
 // Joining kNN components separated by sampling gaps (an extension; see README).
 #include "core/graph/bridging.h"
+#include "core/common/geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +13,6 @@
 namespace pcl_ncut_seg {
 
 namespace {
-double distance(const float* xyz, std::size_t a, std::size_t b) {
-  const float* pa = xyz + 3 * a;
-  const float* pb = xyz + 3 * b;
-  const double dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
 /// Occupied cells of a uniform grid: per cell its points (a range of one sorted array), its
 /// component (kMixed when it holds more than one) and how many steps around it hold no other
 /// component. Most cells hold one component and lie among cells of that component only: a
@@ -206,7 +201,7 @@ private:
   void consider(std::uint32_t p, std::uint32_t q) {
     if (comp_[q] == comp_[p])
       return;
-    const double d = distance(xyz_, p, q);
+    const double d = pointDistance<double>(xyz_, p, q);
     if (!(d <= std::min(reach_[p], reach_[q])))
       return;
     const auto pair = std::minmax(comp_[p], comp_[q]);

@@ -1,4 +1,5 @@
 #include "core/graph/csr_graph.h"
+#include "core/common/geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,13 +7,6 @@
 namespace pcl_ncut_seg {
 
 namespace {
-float distance(const float* xyz, std::size_t a, std::size_t b) {
-  const float* pa = xyz + 3 * a;
-  const float* pb = xyz + 3 * b;
-  const float dx = pa[0] - pb[0], dy = pa[1] - pb[1], dz = pa[2] - pb[2];
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
-
 /// The kNN lists and the rule that decides which of their entries become edges. Per kNN
 /// entry p -> q, put says: bit 0, q goes into p's row; bit 1, p goes into q's row too.
 struct KnnEntries {
@@ -69,7 +63,7 @@ void KnnEntries::measureRadii() {
     for (std::size_t j = 0; j < k; ++j) {
       const std::uint32_t q = knn[p * k + j];
       if (q < n && q != p)
-        radius[p] = std::max(radius[p], distance(xyz, p, q));
+        radius[p] = std::max(radius[p], pointDistance(xyz, p, q));
     }
   }
 }
@@ -88,7 +82,7 @@ void KnnEntries::markUsed(std::uint32_t* reverse_count) {
       const std::uint32_t q = knn[p * k + j];
       if (q >= n || q == p)
         continue;
-      const float d = distance(xyz, p, q);
+      const float d = pointDistance(xyz, p, q);
       if (!usedAt(q, d) || isDuplicateInRow(p, j))
         continue;
       const bool reverse = !listsUsed(q, p, d);
@@ -154,7 +148,7 @@ void sortRowsAndMeasure(CsrGraph& g, const float* xyz, int num_threads) {
       }
     }
     for (std::uint32_t e = g.offsets[v]; e < g.offsets[v + 1]; ++e)
-      g.lengths[e] = distance(xyz, v, g.targets[e]);
+      g.lengths[e] = pointDistance(xyz, v, g.targets[e]);
   }
 }
 } // namespace
@@ -203,7 +197,7 @@ std::size_t connectedComponents(const CsrGraph& graph, std::vector<std::uint32_t
 void measureLengths(CsrGraph& graph, const float* xyz) {
   for (std::size_t v = 0; v < graph.numVertices(); ++v)
     for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
-      graph.lengths[e] = distance(xyz, v, graph.targets[e]);
+      graph.lengths[e] = pointDistance(xyz, v, graph.targets[e]);
 }
 
 } // namespace pcl_ncut_seg

@@ -1,5 +1,6 @@
 // Sensor noise detected and projected away (see core/graph/denoise.h).
 #include "core/graph/denoise.h"
+#include "core/common/geometry.h"
 #include "core/common/threads.h"
 
 #include <Eigen/Dense>
@@ -7,53 +8,29 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 namespace pcl_ncut_seg {
 
 namespace {
 
-/// Plane of the given vertices: centroid, unit normal and RMS distance to the plane; false
-/// when they have none. Moments in double relative to the first vertex. Only the lower
-/// triangle is summed: the eigensolver reads no other, and each entry is the same sum of the
-/// same products, in the same order, as Eigen's d * d^T would give.
-bool fitPlane(const float* xyz, const std::vector<std::uint32_t>& members,
-              Eigen::Vector3d& centroid, Eigen::Vector3d& normal, double& rms) {
+/// The least-squares plane of the given vertices (moments in double about the first one) and
+/// the RMS distance to it; nothing when they have none.
+std::optional<Plane> ringPlane(const float* xyz, const std::vector<std::uint32_t>& members,
+                               double& rms) {
   if (members.size() < 3)
-    return false;
-  const double ox = xyz[3 * members[0]], oy = xyz[3 * members[0] + 1], oz = xyz[3 * members[0] + 2];
-  double sx = 0, sy = 0, sz = 0, xx = 0, yx = 0, yy = 0, zx = 0, zy = 0, zz = 0;
-  for (std::uint32_t v : members) {
-    const double dx = xyz[3 * v] - ox, dy = xyz[3 * v + 1] - oy, dz = xyz[3 * v + 2] - oz;
-    sx += dx;
-    sy += dy;
-    sz += dz;
-    xx += dx * dx;
-    yx += dy * dx;
-    yy += dy * dy;
-    zx += dz * dx;
-    zy += dz * dy;
-    zz += dz * dz;
-  }
-  const double m = static_cast<double>(members.size());
-  const Eigen::Vector3d mean(sx / m, sy / m, sz / m);
-  const double mx = m * mean[0], my = m * mean[1], mz = m * mean[2];
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero(); // lower: moments - m * mean * mean^T
-  cov(0, 0) = xx - mx * mean[0];
-  cov(1, 0) = yx - my * mean[0];
-  cov(1, 1) = yy - my * mean[1];
-  cov(2, 0) = zx - mz * mean[0];
-  cov(2, 1) = zy - mz * mean[1];
-  cov(2, 2) = zz - mz * mean[2];
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  solver.computeDirect(cov);
-  const Eigen::Vector3d& lambda = solver.eigenvalues(); // ascending
-  if (!(lambda[2] > 0.0) || !(lambda[1] > 1e-10 * lambda[2]))
-    return false; // coincident or collinear
-  normal = solver.eigenvectors().col(0).normalized();
-  centroid = Eigen::Vector3d(ox, oy, oz) + mean;
+    return std::nullopt;
+  ShiftedMoments<double> moments(&xyz[3 * members[0]]);
+  for (std::uint32_t v : members)
+    moments.add(&xyz[3 * v]);
+  const Scatter scatter = moments.scatter(MeanProduct::kRowFirst);
+  std::optional<Plane> plane = fitPlane(scatter, kNotCollinearDouble, EigenSolve::kClosedForm);
+  if (!plane)
+    return std::nullopt;
+  const Eigen::Vector3d& lambda = plane->lambda;
   // Scatter below float rounding (squared: 1e-12 of the spread) is none: an exactly flat grid.
-  rms = lambda[0] > 1e-12 * lambda[2] ? std::sqrt(lambda[0] / m) : 0.0;
-  return true;
+  rms = lambda[0] > 1e-12 * lambda[2] ? std::sqrt(lambda[0] / scatter.count) : 0.0;
+  return plane;
 }
 
 /// The 1-ring (first) and 2-ring of vertex p, without repeats; stamp marks what is in.
@@ -85,11 +62,10 @@ private:
   std::uint32_t tick_ = 0;
 };
 
-/// Vertex p projected onto the plane through centroid with unit normal: 3 floats to out.
-void projectOnto(const float* xyz, std::uint32_t p, const Eigen::Vector3d& centroid,
-                 const Eigen::Vector3d& normal, float* out) {
+/// Vertex p projected onto the plane: 3 floats to out.
+void projectOnto(const float* xyz, std::uint32_t p, const Plane& plane, float* out) {
   const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
-  const Eigen::Vector3d y = x - (x - centroid).dot(normal) * normal;
+  const Eigen::Vector3d y = x - (x - plane.centroid).dot(plane.normal) * plane.normal;
   for (int d = 0; d < 3; ++d)
     out[d] = static_cast<float>(y[d]);
 }
@@ -111,15 +87,14 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
 #pragma omp parallel num_threads(usableThreads(num_threads))
   {
     Rings rings(graph.numVertices());
-    Eigen::Vector3d centroid, normal;
     double r1 = 0.0, r2 = 0.0;
 #pragma omp for schedule(static, 256)
     for (std::int64_t i = 0; i < sm; ++i) {
       const auto p = static_cast<std::uint32_t>(i * kStride);
       rings.collect(graph, p);
-      if (!fitPlane(xyz, rings.ring1(), centroid, normal, r1))
+      if (!ringPlane(xyz, rings.ring1(), r1))
         continue;
-      const bool plane = fitPlane(xyz, rings.ring2(), centroid, normal, r2);
+      const std::optional<Plane> plane = ringPlane(xyz, rings.ring2(), r2);
       if (plane) {
         rms1[i] = r1;
         rms2[i] = r2;
@@ -127,7 +102,7 @@ double residualGrowth(const CsrGraph& graph, const float* xyz, unsigned num_thre
       if (fits) {
         fits->state[i] = plane ? 1 : 2;
         if (plane)
-          projectOnto(xyz, p, centroid, normal, &fits->projected[3 * i]);
+          projectOnto(xyz, p, *plane, &fits->projected[3 * i]);
       }
     }
   }
@@ -172,7 +147,6 @@ std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xy
 #pragma omp parallel num_threads(usableThreads(num_threads))
   {
     Rings rings(n);
-    Eigen::Vector3d centroid, normal;
     double rms = 0.0;
 #pragma omp for schedule(static, 1024)
     for (std::int64_t sp = 0; sp < sn; ++sp) {
@@ -183,8 +157,8 @@ std::vector<float> projectOntoLocalPlanes(const CsrGraph& graph, const float* xy
         continue;
       }
       rings.collect(graph, p);
-      if (fitPlane(xyz, rings.ring2(), centroid, normal, rms))
-        projectOnto(xyz, p, centroid, normal, &out[3 * p]);
+      if (const std::optional<Plane> plane = ringPlane(xyz, rings.ring2(), rms))
+        projectOnto(xyz, p, *plane, &out[3 * p]);
     }
   }
   return out;

@@ -6,6 +6,10 @@
 #include "core/graph/csr_graph.h"
 
 #include <cstdint>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
 #include <vector>
 
 namespace pcl_ncut_seg {
@@ -78,5 +82,76 @@ struct NearestSources {
 
 /** \brief Multi-source search from sources (vertex ids) keeping two labels per vertex. */
 NearestSources nearestTwoSources(const CsrGraph& graph, const std::vector<std::uint32_t>& sources);
+
+} // namespace pcl_ncut_seg
+
+namespace pcl_ncut_seg {
+
+/// What a search does with the vertex it has just settled.
+enum class Settle {
+  kExpand, ///< relax its edges
+  kStop,   ///< end the search here (what is still queued is dropped)
+};
+
+/** \brief Exact multi-source Dijkstra over the graph's edge lengths, for the searches that
+ * need more than distances: a mask or a bound on the edges, something done per settled vertex
+ * in the order settled, the source each vertex is nearest to.
+ *
+ * A binary heap of (distance, vertex) settles the nearest vertex first, the lowest id among
+ * equals, and each vertex once (with owners, again when its owner changes at an equal
+ * distance): the order of settling, and so any sum taken in it, is reproducible. Distances are
+ * summed in Dist (float: the least solution of d(v) = min_u fl(d(u) + w(u, v)), the same as
+ * BucketDijkstra's; double where a band's width is compared with them).
+ * \param[in] sources    vertices queued first, in this order, at their dist (finite)
+ * \param[in,out] dist   per vertex: the sources' start distances, +infinity where the search is
+ *                       to reach; filled in
+ * \param[in] reach      reach(p, q, dq) -> bool: whether the edge (p, q) may lower q's distance
+ *                       to dq (a mask, a bound); asked only when dq improves on dist[q]
+ * \param[in] settle     settle(p, d) -> Settle: called when p is settled at distance d
+ * \param[in,out] owner  if given, per vertex the label of its source (kept at the sources,
+ *                       anything elsewhere): each vertex takes its nearest source's, the lowest
+ *                       label among equally near ones
+ * \param[out] touched   if given, every vertex whose dist was lowered from +infinity is appended */
+template <typename Dist, typename Reach, typename SettleFn>
+void multiSourceDijkstra(const CsrGraph& graph, const std::vector<std::uint32_t>& sources,
+                         Dist* dist, Reach reach, SettleFn settle, std::uint32_t* owner = nullptr,
+                         std::vector<std::uint32_t>* touched = nullptr) {
+  constexpr Dist kInfinity = std::numeric_limits<Dist>::infinity();
+  using Item = std::pair<Dist, std::uint32_t>; // the nearest, then the lowest id, on top
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (std::uint32_t s : sources)
+    queue.emplace(dist[s], s);
+  while (!queue.empty()) {
+    const auto [d, p] = queue.top();
+    queue.pop();
+    if (d > dist[p])
+      continue; // stale: p was queued again nearer
+    if (settle(p, d) == Settle::kStop)
+      return;
+    for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
+      const std::uint32_t q = graph.targets[e];
+      const Dist dq = d + graph.lengths[e];
+      const bool nearer = dq < dist[q] || (owner && dq == dist[q] && owner[p] < owner[q]);
+      if (!nearer || !reach(p, q, dq))
+        continue;
+      if (touched && dist[q] == kInfinity)
+        touched->push_back(q);
+      dist[q] = dq;
+      if (owner)
+        owner[q] = owner[p];
+      queue.emplace(dq, q);
+    }
+  }
+}
+
+/// For multiSourceDijkstra(): every edge may be used, every settled vertex is expanded.
+struct AnyEdge {
+  template <typename Dist> bool operator()(std::uint32_t, std::uint32_t, Dist) const {
+    return true;
+  }
+};
+struct ExpandAll {
+  template <typename Dist> Settle operator()(std::uint32_t, Dist) const { return Settle::kExpand; }
+};
 
 } // namespace pcl_ncut_seg

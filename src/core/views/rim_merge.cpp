@@ -1,16 +1,17 @@
 #include "core/views/rim_merge.h"
 
+#include "core/common/geometry.h"
 #include "core/cut/short_cut.h"
+#include "core/graph/shortest_paths.h"
 #include "core/supernodes/supernodes.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numeric>
-#include <queue>
+#include <optional>
 #include <utility>
 
 namespace pcl_ncut_seg {
@@ -31,21 +32,18 @@ struct Band {
     outer += o.outer;
   }
   /// The least-squares plane: its centre and unit normal, oriented as the points' normals;
-  /// false for fewer than 3 points or collinear ones (as denoise.cpp's and concavity.cpp's
-  /// plane fits), whose normal would be any.
-  bool plane(Eigen::Vector3d& centre, Eigen::Vector3d& n) const {
-    if (count < 3)
-      return false;
-    centre = sum / count;
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-    solver.computeDirect(outer / count - centre * centre.transpose());
-    const Eigen::Vector3d& lambda = solver.eigenvalues(); // ascending
-    if (!(lambda[2] > 0.0) || !(lambda[1] > 1e-10 * lambda[2]))
-      return false;
-    n = solver.eigenvectors().col(0).normalized();
-    if (n.dot(normal) < 0)
-      n = -n;
-    return true;
+  /// nothing for fewer than 3 points or collinear ones, whose normal would be any.
+  std::optional<Plane> plane() const {
+    Scatter scatter;
+    scatter.count = count;
+    if (count >= 3) {
+      scatter.centroid = sum / count;
+      scatter.matrix = outer / count - scatter.centroid * scatter.centroid.transpose();
+    }
+    std::optional<Plane> out = fitPlane(scatter, kNotCollinearDouble, EigenSolve::kClosedForm);
+    if (out && out->normal.dot(normal) < 0)
+      out->normal = -out->normal;
+    return out;
   }
 };
 
@@ -57,48 +55,40 @@ std::vector<Band> sideBands(const CsrGraph& graph, const std::vector<float>& xyz
                             double band_width) {
   const std::size_t n = graph.numVertices();
   std::vector<Band> band(t * t);
-  std::vector<std::uint32_t> border, touched;
+  std::vector<std::uint32_t> border, touched, sources;
   std::vector<double> dist(n, std::numeric_limits<double>::infinity());
-  using Entry = std::pair<double, std::uint32_t>; // distance, vertex: the nearest, then lowest
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   for (std::uint32_t p = 0; p < n; ++p) // the points with a neighbour in another segment
     for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
       if (segment[graph.targets[e]] != segment[p]) {
         border.push_back(p);
         break;
       }
+  // Within a segment, and no farther than the band's width.
+  auto reach = [&](std::uint32_t p, std::uint32_t q, double dq) {
+    return segment[q] == segment[p] && dq <= band_width;
+  };
   for (std::uint32_t b = 0; b < t; ++b) {
+    sources.clear();
     for (std::uint32_t p : border)
       if (segment[p] != b)
         for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e)
           if (segment[graph.targets[e]] == b) {
             dist[p] = 0.0;
-            touched.push_back(p);
-            queue.emplace(0.0, p);
+            sources.push_back(p);
             break;
           }
-    while (!queue.empty()) {
-      const auto [d, p] = queue.top();
-      queue.pop();
-      if (d > dist[p])
-        continue; // a stale entry: distances only fall, strictly, so p pops once at dist[p]
+    touched = sources;
+    // Each point adds to its side's band once, in the order settled (the sums' order).
+    auto add = [&](std::uint32_t p, double) {
       Band& bd = band[segment[p] * t + b];
       const Eigen::Vector3d x(xyz[3 * p], xyz[3 * p + 1], xyz[3 * p + 2]);
       bd.count += 1;
       bd.sum += x;
       bd.outer += x * x.transpose();
       bd.normal += Eigen::Vector3d(normals[3 * p], normals[3 * p + 1], normals[3 * p + 2]);
-      for (std::uint32_t e = graph.offsets[p]; e < graph.offsets[p + 1]; ++e) {
-        const std::uint32_t q = graph.targets[e];
-        const double dq = d + graph.lengths[e];
-        if (segment[q] == segment[p] && dq <= band_width && dq < dist[q]) {
-          if (dist[q] == std::numeric_limits<double>::infinity())
-            touched.push_back(q);
-          dist[q] = dq;
-          queue.emplace(dq, q);
-        }
-      }
-    }
+      return Settle::kExpand;
+    };
+    multiSourceDijkstra(graph, sources, dist.data(), reach, add, nullptr, &touched);
     for (std::uint32_t p : touched)
       dist[p] = std::numeric_limits<double>::infinity();
     touched.clear();
@@ -118,13 +108,13 @@ double concaveAngle(const std::vector<Band>& band, const std::vector<std::uint32
         ab.add(band[i * t + j]);
         ba.add(band[j * t + i]);
       }
-  Eigen::Vector3d ca, na, cb, nb;
-  if (!ab.plane(ca, na) || !ba.plane(cb, nb))
+  const std::optional<Plane> pa = ab.plane(), pb = ba.plane();
+  if (!pa || !pb)
     return -1.0;
   // Concave where the normals lean towards each other (as contactConcavity() reads bends).
-  if ((na - nb).dot(ca - cb) >= 0.0)
+  if ((pa->normal - pb->normal).dot(pa->centroid - pb->centroid) >= 0.0)
     return 0.0;
-  return std::acos(std::clamp(na.dot(nb), -1.0, 1.0));
+  return std::acos(std::clamp(pa->normal.dot(pb->normal), -1.0, 1.0));
 }
 } // namespace
 

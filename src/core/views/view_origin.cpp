@@ -1,12 +1,15 @@
 // The sensor position of a view read off its points (see core/views/view_origin.h).
 #include "core/views/view_origin.h"
+#include "core/common/geometry.h"
 #include "core/common/threads.h"
 #include "core/views/single_view.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace pcl_ncut_seg {
 
@@ -24,16 +27,6 @@ constexpr double kMinBoundaryOnRim = 0.5;
 constexpr double kMinRimOnBoundary = 0.25;
 // See couldBeSensor().
 constexpr double kMinSensorDiagonals = 0.5;
-
-/// The unit eigenvector of the smallest eigenvalue of the covariance of the points; false when
-/// it is not defined (fewer than 3 points, or all on a line).
-bool planeNormal(const Eigen::Matrix3d& cov, Eigen::Vector3d& normal) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-  if (eig.info() != Eigen::Success || !(eig.eigenvalues()(1) > 0.0))
-    return false;
-  normal = eig.eigenvectors().col(0);
-  return normal.allFinite();
-}
 
 Eigen::Vector3d point(const float* xyz, std::uint32_t v) {
   return {xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]};
@@ -126,22 +119,18 @@ bool leavesGap(const CsrGraph& graph, const float* xyz, std::uint32_t v,
   return widestGap(p, normal, ring, angles) > kBoundaryGap;
 }
 
-/// Rule of boundaryPoints() at v.
+/// Rule of boundaryPoints() at v (closed ring: a buffer for v and its neighbours).
 std::uint8_t isBoundary(const CsrGraph& graph, const float* xyz, std::uint32_t v,
-                        std::vector<Eigen::Vector3d>& ring, std::vector<double>& angles) {
+                        std::vector<std::uint32_t>& closed, std::vector<Eigen::Vector3d>& ring,
+                        std::vector<double>& angles) {
   if (graph.degree(v) < 3)
     return 0;
-  Eigen::Vector3d mean = point(xyz, v);
-  for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e)
-    mean += point(xyz, graph.targets[e]);
-  mean /= static_cast<double>(graph.degree(v) + 1);
-  Eigen::Matrix3d cov = (point(xyz, v) - mean) * (point(xyz, v) - mean).transpose();
-  for (std::uint32_t e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
-    const Eigen::Vector3d d = point(xyz, graph.targets[e]) - mean;
-    cov += d * d.transpose();
-  }
-  Eigen::Vector3d normal;
-  return planeNormal(cov, normal) && leavesGap(graph, xyz, v, normal, ring, angles) ? 1 : 0;
+  closed.assign(1, v);
+  closed.insert(closed.end(), graph.targets.begin() + graph.offsets[v],
+                graph.targets.begin() + graph.offsets[v + 1]);
+  const std::optional<Plane> plane =
+      fitPlane(centredScatter(xyz, closed), kAnyPlane, EigenSolve::kIterative);
+  return plane && leavesGap(graph, xyz, v, plane->normal, ring, angles) ? 1 : 0;
 }
 
 } // namespace
@@ -154,10 +143,11 @@ std::vector<std::uint8_t> boundaryPoints(const CsrGraph& graph, const float* xyz
 #pragma omp parallel num_threads(threads)
   {
     std::vector<double> angles;
+    std::vector<std::uint32_t> closed;
     std::vector<Eigen::Vector3d> ring;
 #pragma omp for schedule(static, 1024)
     for (std::int64_t i = 0; i < sn; ++i)
-      boundary[i] = isBoundary(graph, xyz, static_cast<std::uint32_t>(i), ring, angles);
+      boundary[i] = isBoundary(graph, xyz, static_cast<std::uint32_t>(i), closed, ring, angles);
   }
   return boundary;
 }
@@ -186,29 +176,23 @@ std::optional<std::array<float, 3>> estimateViewOrigin(const CsrGraph& graph, co
       along += gap[graph.targets[e]];
     boundary[v] = along >= 2;
   }
-  std::size_t m = 0;
-  Eigen::Vector3d rim_mean = Eigen::Vector3d::Zero();
+  std::vector<std::uint32_t> rim_points;
   for (std::uint32_t v = 0; v < n; ++v)
-    if (boundary[v]) {
-      rim_mean += point(xyz, v);
-      ++m;
-    }
+    if (boundary[v])
+      rim_points.push_back(v);
+  const std::size_t m = rim_points.size();
   // A view's rim runs around it: about 3.5 sqrt(n) points around a disc of n points, and even
   // where the sampling thins out towards a silhouette, more than sqrt(n).
   if (static_cast<double>(m) < std::sqrt(static_cast<double>(n)) || m < 3)
     return std::nullopt;
   const Extent extent = extentOf(xyz, n);
   const Eigen::Vector3d& centroid = extent.centroid;
-  rim_mean /= static_cast<double>(m);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (std::uint32_t v = 0; v < n; ++v)
-    if (boundary[v]) {
-      const Eigen::Vector3d d = point(xyz, v) - rim_mean;
-      cov += d * d.transpose();
-    }
-  Eigen::Vector3d axis;
-  if (!planeNormal(cov, axis))
+  const std::optional<Plane> rim_plane =
+      fitPlane(centredScatter(xyz, rim_points), kAnyPlane, EigenSolve::kIterative);
+  if (!rim_plane)
     return std::nullopt;
+  const Eigen::Vector3d& rim_mean = rim_plane->centroid;
+  Eigen::Vector3d axis = rim_plane->normal;
   // A sensor sees an object's near side, which bulges towards it from the silhouette: try
   // the side the points' centroid lies on from the rim's first (by the axis' largest
   // component when the points are flat, so that the order of the points does not matter).
