@@ -78,6 +78,10 @@ void PointSegmenter::analyze(const Parameters& params, PhaseTimes& times,
   Stopwatch clock;
   PreparedPoints& prepared = prepared_->points;
   const std::size_t n = numVertices();
+  if (n == 0) { // nothing prepared: no analysis (a misuse, not a crash)
+    analyses_.reset();
+    return;
+  }
   if (progress)
     progress("kNN", 0.0);
   // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points).
@@ -105,7 +109,7 @@ bool PointSegmenter::serves(const Parameters& params) const {
 }
 
 void PointSegmenter::cut(const Parameters& params, PhaseTimes& times) {
-  *result_ = pcl_ncut_seg::cut(*analyses_, params, times);
+  *result_ = analyses_ ? pcl_ncut_seg::cut(*analyses_, params, times) : CutResult();
 }
 
 const std::vector<std::uint32_t>& PointSegmenter::pointSegments() const {

@@ -6,6 +6,7 @@
  * setter values); this file adds what those leave out, and checks the messages. Parameters at
  * the edges of their ranges, and determinism: test_parameter_edges.cpp.
  */
+#include <pcl_ncut_seg/segment_points.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <shapes/metrics.h>
 #include <shapes/shapes.h>
@@ -74,6 +75,23 @@ Cloud::Ptr transformed(const Cloud& in, double scale, double offset) {
 
 // ---------------------------------------------------------------------------------------------
 // No usable input: an empty result and a PCL_ERROR that says why.
+
+// PointSegmenter (segment_points.h) used out of order: no analysis and no segments, no crash.
+TEST(Robustness, PointSegmenterOutOfOrderGivesNoSegments) {
+  pcl_ncut_seg::PointSegmenter segmenter;
+  pcl_ncut_seg::PhaseTimes times;
+  const pcl_ncut_seg::Parameters params;
+  segmenter.cut(params, times); // before any analysis
+  EXPECT_FALSE(segmenter.analysed());
+  EXPECT_EQ(segmenter.numSegments(), 0u);
+  EXPECT_TRUE(segmenter.pointSegments().empty());
+  segmenter.analyze(params, times); // before prepare()
+  EXPECT_FALSE(segmenter.analysed());
+  EXPECT_FALSE(segmenter.serves(params));
+  EXPECT_EQ(segmenter.analysis(), nullptr);
+  segmenter.cut(params, times);
+  EXPECT_EQ(segmenter.numSegments(), 0u);
+}
 
 TEST(Robustness, NoInputOrNullInputSaysWhy) {
   Seg seg;

@@ -77,7 +77,7 @@ public:
   /** \brief The expensive stage on the prepared points: the k nearest neighbours (FLANN's
    * kd-tree as pcl::search::KdTree builds it, or search), CAD mode's normals (NaN without
    * normals), then the analysis (Secs. 4, 7). Reports the phases "kNN", "Cen", "Snod", "LRef".
-   * Adds the phases' times to times. */
+   * Adds the phases' times to times. Without prepared points: no analysis (analysed() false). */
   void analyze(const Parameters& params, PhaseTimes& times, const PhaseProgressFn& progress = {},
                const NeighbourSearch& search = {}, const CadNormals& normals = {});
   /** \brief Whether there is an analysis. */
@@ -85,7 +85,8 @@ public:
   /** \brief Whether the analysis holds what a cut with these parameters needs. */
   bool serves(const Parameters& params) const;
 
-  /** \brief The cheap stage (Sec. 5) on the analysis (analysed()); replaces the result. */
+  /** \brief The cheap stage (Sec. 5) on the analysis; replaces the result (an empty one, no
+   * segments, when there is no analysis). */
   void cut(const Parameters& params, PhaseTimes& times);
   /** \brief Per vertex its segment, by the last cut(). */
   const std::vector<std::uint32_t>& pointSegments() const;
