@@ -116,6 +116,7 @@ std::vector<ParamCase> validEdges() {
                       {Adjacency::Saddles, Adjacency::Trees, Adjacency::All});
   addValid<OptD>(v, SETTER("concavity", setConcavityWeight, getConcavityWeight),
                  {nullopt, kDMin, kDMax});
+  addValid<bool>(v, SETTER("thickness", setThickness, getThickness), {true, false});
   addValid<OptD>(v, SETTER("flat_elongation", setFlatElongation, getFlatElongation),
                  {nullopt, kDMin, kDMax});
   addValid<StoppingRule>(v, SETTER("stopping", setStoppingRule, getStoppingRule),
@@ -197,6 +198,7 @@ const std::map<std::string, std::string> kOnlyThroughSetParameters = {
 const std::map<std::string, std::string> kNoValuePastTheRange = {
     {"cad", "setCadMode takes a bool"},
     {"normalize_width", "setNormalizeWidth takes a bool"},
+    {"thickness", "setThickness takes a bool"},
     {"threads", "setNumberOfThreads takes an unsigned, and every unsigned is valid"}};
 
 /// The table's rows that neither the cases nor the lists name.

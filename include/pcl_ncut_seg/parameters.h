@@ -132,6 +132,11 @@ struct SimilarityParams {
   Adjacency adjacency = Adjacency::All;
   /// Extension: the weight of eq. (9) times exp(-w c), c the concavity of the pair's contact.
   std::optional<double> concavity = 3.0;
+  /// Extension (core/cut/thickness.h): eq. (9)'s alpha_ij also times the ratio of the two
+  /// supernodes' thickness (their medial balls' radii), as it is times their widths' ratio: a
+  /// fin or a wing is thinner than the body it grows from. Closed surfaces only (a view has no
+  /// far side). Off: the paper.
+  bool thickness = true;
   /// Extension: flat supernodes (f_h < e sqrt(f_a)) leave the width ratio out of eq. (9).
   std::optional<double> flat_elongation = 0.1;
 };

@@ -182,6 +182,9 @@ public:
   /** \param[in] weight  similarity.concavity, > 0; std::nullopt: off */
   void setConcavityWeight(std::optional<double> weight);
   std::optional<double> getConcavityWeight() const { return params_.similarity.concavity; }
+  /** \param[in] thickness  similarity.thickness: thin parts by their medial balls */
+  void setThickness(bool thickness);
+  bool getThickness() const { return params_.similarity.thickness; }
   /** \param[in] elongation  similarity.flat_elongation, > 0; std::nullopt: off */
   void setFlatElongation(std::optional<double> elongation);
   std::optional<double> getFlatElongation() const { return params_.similarity.flat_elongation; }

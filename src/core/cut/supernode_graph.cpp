@@ -152,9 +152,10 @@ void ComponentScales::findComponents(const Connectivity& conn, std::uint32_t l) 
 class SupernodeEdges {
 public:
   SupernodeEdges(const FeatureStats& stats, const Connectivity& conn,
-                 const SimilarityParams& params, const Connectivity* concavity, std::uint32_t l,
-                 WeightedGraph& g)
-      : stats_(stats), conn_(conn), params_(params), concavity_(concavity), l_(l), g_(g),
+                 const SimilarityParams& params, const Connectivity* concavity,
+                 const std::vector<float>* thickness, std::uint32_t l, WeightedGraph& g)
+      : stats_(stats), conn_(conn), params_(params), concavity_(concavity),
+        thickness_(thickness), l_(l), g_(g),
         scales_(stats, conn, params, l), tree_(l) {
     std::iota(tree_.begin(), tree_.end(), 0u);
   }
@@ -233,12 +234,23 @@ private:
     const double width_ratio = scales_.flat[i] && scales_.flat[j]
                                    ? 1.0
                                    : std::min(width[i], width[j]) / std::max(width[i], width[j]);
-    const double alpha_ij = std::max(params_.alpha2 * width_ratio, 1e-300);
+    const double alpha_ij = std::max(params_.alpha2 * width_ratio * thicknessRatio(i, j), 1e-300);
     // Concave contact (an extension): a weaker edge, so that cuts follow concave creases.
     const double concavity_weight = params_.concavity.value_or(0.0);
     const double crease =
         concavity_weight > 0.0 && concavity_ ? concavity_weight * lookup(*concavity_, i, j) : 0.0;
     return std::max(std::exp(-d1 / params_.alpha1 - d2 / alpha_ij - crease), kMinWeight);
+  }
+
+  /// min/max of the two supernodes' thickness (core/cut/thickness.h): a part that is thinner or
+  /// thicker than its neighbour meets it at a weaker edge, like a narrower one in eq. (9).
+  double thicknessRatio(std::uint32_t i, std::uint32_t j) const {
+    if (!thickness_ || !params_.thickness)
+      return 1.0;
+    const double a = (*thickness_)[i], b = (*thickness_)[j];
+    if (!(a > 0.0) || !(b > 0.0))
+      return 1.0;
+    return std::min(a, b) / std::max(a, b);
   }
 
   std::uint32_t find(std::uint32_t s) {
@@ -251,6 +263,7 @@ private:
   const Connectivity& conn_;
   const SimilarityParams& params_;
   const Connectivity* concavity_;
+  const std::vector<float>* thickness_;
   const std::uint32_t l_;
   WeightedGraph& g_;
   const ComponentScales scales_;
@@ -260,13 +273,14 @@ private:
 
 WeightedGraph buildSupernodeGraph(const Supernodes& sn, const FeatureStats& stats,
                                   const Connectivity& conn, const SimilarityParams& params,
-                                  const Connectivity* concavity) {
+                                  const Connectivity* concavity,
+                                  const std::vector<float>* thickness) {
   const auto l = static_cast<std::uint32_t>(sn.size());
   WeightedGraph g;
   g.num_vertices = 2 * l;
   if (l == 0)
     return g;
-  SupernodeEdges edges(stats, conn, params, concavity, l, g);
+  SupernodeEdges edges(stats, conn, params, concavity, thickness, l, g);
   edges.addRepresentativeEdges();
   edges.addSaddleEdges(sn);
   if (params.adjacency == Adjacency::All)

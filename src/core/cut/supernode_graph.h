@@ -46,6 +46,7 @@ constexpr double kAdjacentShare = 0.45;
  */
 WeightedGraph buildSupernodeGraph(const Supernodes& supernodes, const FeatureStats& stats,
                                   const Connectivity& conn, const SimilarityParams& params,
-                                  const Connectivity* concavity = nullptr);
+                                  const Connectivity* concavity = nullptr,
+                                  const std::vector<float>* thickness = nullptr);
 
 } // namespace pcl_ncut_seg

@@ -54,6 +54,7 @@ struct CutNeeds {
   bool concavity = false; ///< Analysis::concavity (similarity.concavity on, not CAD)
   bool crease = false;    ///< Analysis::crease (boundary.band on, not CAD)
   bool rim = false;       ///< Analysis::rim_xyz, rim_normals (boundary.rim_merge on, not CAD)
+  bool thickness = false; ///< Analysis::thickness (similarity.thickness on, not CAD)
 };
 
 /** \brief The expensive stage from one start of eq. (1)'s sampling: everything that depends
@@ -75,6 +76,9 @@ struct Analysis {
   /// Per pair of touching supernodes, how concave their contact is (core/cut/concavity.h);
   /// measured.concavity.
   Connectivity concavity;
+  /// Per refined supernode, its median medial radius (core/cut/thickness.h); NaN where unknown
+  /// (an open view); measured.thickness.
+  std::vector<float> thickness;
   /// Per directed kNN edge, its concave bend (core/cut/boundary_refinement.h); measured.crease.
   std::vector<std::uint8_t> crease;
   std::vector<std::uint32_t> order; ///< PointSet::order

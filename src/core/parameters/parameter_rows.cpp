@@ -159,6 +159,12 @@ void similarityRows(Rows& t) {
           "the pair's contact is",
           false),
       above(0), FIELD(similarity.concavity), "off"));
+  t.push_back(boolean(row("thickness", "similarity.thickness", S::Similarity, K::Boolean,
+                          "on|off",
+                          "thin parts: eq. (9)'s width ratio also times the ratio of the two "
+                          "supernodes' thickness (medial balls), on closed surfaces",
+                          false),
+                      FIELD(similarity.thickness)));
   t.push_back(number<double, std::optional<double>>(
       row("flat_elongation", "similarity.flat_elongation", S::Similarity, K::Real, "E",
           "flat patches: between two supernodes with feature height < E sqrt(feature area), "

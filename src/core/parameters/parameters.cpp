@@ -38,6 +38,7 @@ Parameters Parameters::paper() {
   p.centrality.starts = 1;
   p.refinement.crease_split.reset();
   p.similarity.normalize_width = false;
+  p.similarity.thickness = false;
   p.similarity.adjacency = Adjacency::Saddles;
   p.similarity.concavity.reset();
   p.similarity.flat_elongation.reset();

@@ -1,4 +1,5 @@
 #include "core/pipeline/analysis_stages.h"
+#include "core/cut/thickness.h"
 #include "core/graph/bridging.h"
 
 #include "core/centrality/coarse_centrality.h"
@@ -108,9 +109,11 @@ Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& 
 }
 
 SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads,
-                          const float* viewpoint) {
+                          const float* viewpoint, bool thickness) {
   SurfaceBends b;
   b.normals = orientedNormals(graph, xyz, num_threads, viewpoint);
+  if (thickness)
+    b.medial_radii = medialRadii(xyz, graph.numVertices(), b.normals, num_threads);
   b.typical_bend = meanAbsBend(graph, xyz, b.normals, num_threads);
   return b;
 }
@@ -139,6 +142,8 @@ void contactStage(Analysis& a, const float* xyz, const SurfaceBends& bends, cons
         contactConcavity(*a.graph, xyz, bends.normals, a.supernodes.label, bends.typical_bend);
   if (needs.crease)
     a.crease = edgeCreases(*a.graph, xyz, bends.normals, num_threads, bends.typical_bend);
+  if (needs.thickness)
+    a.thickness = supernodeThickness(bends.medial_radii, a.supernodes.label, a.supernodes.size());
   if (needs.rim && !a.rim.empty()) {
     a.rim_xyz.assign(xyz, xyz + 3 * a.graph->numVertices());
     a.rim_normals = bends.normals;

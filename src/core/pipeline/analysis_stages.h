@@ -52,9 +52,12 @@ Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& 
 struct SurfaceBends {
   std::vector<float> normals; ///< 3 floats per vertex, oriented consistently
   double typical_bend = 0.0;  ///< meanAbsBend()
+  std::vector<float> medial_radii; ///< per vertex, medialRadii() (core/cut/thickness.h); thickness
 };
+/** \param[in] thickness  also the medial radii (a closed surface's: an open view has no far
+ *                        side, and its supernodes get no thickness) */
 SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads,
-                          const float* viewpoint = nullptr);
+                          const float* viewpoint = nullptr, bool thickness = false);
 
 /** \brief Crease stage (extension): split refined supernodes along concave creases
  * (refinement.crease_split; core/supernodes/crease_split.h), then measure their features

@@ -17,7 +17,8 @@ namespace pcl_ncut_seg {
 WeightedGraph similarityStage(const Analysis& a, const SimilarityParams& params) {
   if (a.cad)
     return buildCadSupernodeGraph(a.supernodes, a.stats, a.conn, a.face_angles, params);
-  return buildSupernodeGraph(a.supernodes, a.stats, a.conn, params, &a.concavity);
+  return buildSupernodeGraph(a.supernodes, a.stats, a.conn, params, &a.concavity,
+                             a.thickness.empty() ? nullptr : &a.thickness);
 }
 
 Hierarchy hierarchyStage(const Analysis& a, const WeightedGraph& graph,

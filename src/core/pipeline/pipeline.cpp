@@ -19,6 +19,7 @@ CutNeeds cutNeeds(const Parameters& params) {
   needs.concavity = !params.cad.enabled && params.similarity.concavity.has_value();
   needs.crease = !params.cad.enabled && params.boundary.band.has_value();
   needs.rim = !params.cad.enabled && params.boundary.rim_merge.has_value();
+  needs.thickness = !params.cad.enabled && params.similarity.thickness;
   return needs;
 }
 
@@ -26,7 +27,8 @@ bool serves(const Analysis& analysis, const Parameters& params) {
   const CutNeeds needs = cutNeeds(params);
   const CutNeeds& measured = analysis.measured;
   return analysis.cad == params.cad.enabled && (!needs.concavity || measured.concavity) &&
-         (!needs.crease || measured.crease) && (!needs.rim || measured.rim);
+         (!needs.crease || measured.crease) && (!needs.rim || measured.rim) &&
+         (!needs.thickness || measured.thickness);
 }
 
 namespace {
@@ -98,12 +100,13 @@ void bendStages(std::vector<Analysis>& each, const std::vector<float>& xyz,
                 const Parameters& params, const float* viewpoint, PhaseTimes& times) {
   const CutNeeds needs = cutNeeds(params);
   const bool creases = params.refinement.crease_split.has_value();
-  if (!creases && !needs.concavity && !needs.crease && !needs.rim)
+  if (!creases && !needs.concavity && !needs.crease && !needs.rim && !needs.thickness)
     return;
   // Measured between the supernodes, like eq. (8): their time counts as refinement time.
   Stopwatch clock;
   const SurfaceBends bends =
-      surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint);
+      surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint,
+                   needs.thickness && each[0].rim.empty());
   for (Analysis& one : each) {
     if (creases)
       creaseStage(one, xyz.data(), bends, params);
