@@ -66,8 +66,9 @@ void creaseStage(Analysis& analysis, const float* xyz, const SurfaceBends& bends
                  const Parameters& params);
 
 /** \brief Contact stage (extension): what the cut needs from the surface: the concavity of
- * each contact between supernodes and the concave bend of each kNN edge, as needs asks; the
- * caller records them in Analysis::measured. */
+ * each contact between supernodes, the concave bend of each kNN edge and each supernode's
+ * thickness (from bends.medial_radii), as needs asks; the caller records them in
+ * Analysis::measured. */
 void contactStage(Analysis& analysis, const float* xyz, const SurfaceBends& bends,
                   const CutNeeds& needs, unsigned num_threads);
 

@@ -29,10 +29,13 @@
  *                               core/supernodes/crease_split.h)
  *   [ext]   contact concavity   for concavity and boundary_band (contactStage(),
  *                               core/cut/concavity.h)
+ *   [ext]   thickness           medial balls from probes, each refined supernode's median
+ *                               (contactStage(), core/cut/thickness.h); closed surfaces
  *
  * cut(), the cheap stage, repeatable on kept analyses (cut_stages.h), per start:
  *   [paper] similarity          Sec. 5.1, eqs. (7)-(9); [ext] normalize_width, adjacency,
- *                               concavity, flat_elongation (core/cut/supernode_graph.h)
+ *                               concavity, thickness, flat_elongation
+ *                               (core/cut/supernode_graph.h)
  *   [paper] hierarchy           Sec. 5.2, threshold rule; [ext] stopping=short_cut
  *                               (core/cut/short_cut.h), count
  *   [paper] point segments      footnote 6 (labelPoints())
