@@ -14,7 +14,7 @@ OTHER = {
     "height_fraction": 0.02, "crease_split": None, "cad": True,
     "ridge_angle": 6.0,
     "beta": 3.0, "alpha1": 1.5, "alpha2": 0.4, "normalize_width": False,
-    "adjacency": "trees", "concavity": 2.0, "flat_elongation": 0.2,
+    "adjacency": "trees", "concavity": 2.0, "thickness": False, "flat_elongation": 0.2,
     "stopping": "threshold", "threshold": 0.2, "segments": 3,
     "max_segments": 4,
     "neck_bound": 0.3, "boundary_band": 0.1, "rim_merge": None,
