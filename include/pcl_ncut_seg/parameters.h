@@ -134,8 +134,8 @@ struct SimilarityParams {
   std::optional<double> concavity = 3.0;
   /// Extension (core/cut/thickness.h): eq. (9)'s alpha_ij also times the ratio of the two
   /// supernodes' thickness (their medial balls' radii), as it is times their widths' ratio: a
-  /// fin or a wing is thinner than the body it grows from. Closed surfaces only (a view has no
-  /// far side). Off: the paper.
+  /// fin or a wing is thinner than the body it grows from. Closed surfaces without noise only
+  /// (a view has no far side; noise blurs a thin part's two sides). Off: the paper.
   bool thickness = true;
   /// Extension: flat supernodes (f_h < e sqrt(f_a)) leave the width ratio out of eq. (9).
   std::optional<double> flat_elongation = 0.1;

@@ -54,8 +54,8 @@ struct SurfaceBends {
   double typical_bend = 0.0;  ///< meanAbsBend()
   std::vector<float> medial_radii; ///< per vertex, medialRadii() (core/cut/thickness.h); thickness
 };
-/** \param[in] thickness  also the medial radii (a closed surface's: an open view has no far
- *                        side, and its supernodes get no thickness) */
+/** \param[in] thickness  also the medial radii (of a closed surface without noise: the
+ *                        supernodes of an open view or a noisy cloud get no thickness) */
 SurfaceBends surfaceBends(const CsrGraph& graph, const float* xyz, unsigned num_threads,
                           const float* viewpoint = nullptr, bool thickness = false);
 

@@ -95,18 +95,22 @@ Surface graphAndView(PointSet& points, const Parameters& params) {
 }
 
 /// The extensions that measure the surface's bends around the refined supernodes of each
-/// start; the bends are measured once. viewpoint: one view's sensor, which the normals face.
+/// start; the bends are measured once. viewpoint: one view's sensor, which the normals face;
+/// noisy: the graph stage projected the points (NoiseTest::projected).
 void bendStages(std::vector<Analysis>& each, const std::vector<float>& xyz,
-                const Parameters& params, const float* viewpoint, PhaseTimes& times) {
+                const Parameters& params, const float* viewpoint, bool noisy, PhaseTimes& times) {
   const CutNeeds needs = cutNeeds(params);
   const bool creases = params.refinement.crease_split.has_value();
   if (!creases && !needs.concavity && !needs.crease && !needs.rim && !needs.thickness)
     return;
   // Measured between the supernodes, like eq. (8): their time counts as refinement time.
   Stopwatch clock;
+  // Thickness needs the surface's far side (an open view has none) and its two sides further
+  // apart than the noise (on a noisy cloud a thin part's sides are a few noise widths apart).
+  const bool thickness = needs.thickness && each[0].rim.empty() && !noisy;
   const SurfaceBends bends =
       surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint,
-                   needs.thickness && each[0].rim.empty());
+                   thickness);
   for (Analysis& one : each) {
     if (creases)
       creaseStage(one, xyz.data(), bends, params);
@@ -116,13 +120,16 @@ void bendStages(std::vector<Analysis>& each, const std::vector<float>& xyz,
 }
 
 /// Secs. 4.1-4.3 and the bends' extensions, once per start of eq. (1)'s sampling with its own
-/// samples (core/centrality/starts.h). average: the graph stage found the points noisy (and
-/// projected them) or drawn at random (core/graph/denoise.h). viewpoint: one view's sensor
+/// samples (core/centrality/starts.h). noise: the graph stage's test; f is averaged when it
+/// found the points noisy (and projected them) or drawn at random (core/graph/denoise.h), and
+/// a noisy cloud's supernodes get no thickness. viewpoint: one view's sensor
 /// (null: unknown or a whole surface), which the normals face.
 Analyses surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
                          std::vector<std::uint8_t> rim, const Parameters& params,
                          const std::uint32_t* tie_rank, PhaseTimes& times,
-                         const PhaseProgressFn& progress, bool average, const float* viewpoint) {
+                         const PhaseProgressFn& progress, const NoiseTest& noise,
+                         const float* viewpoint) {
+  const bool average = noise.projected || noise.irregular;
   // A noisy whole surface, or one drawn at random, has its centrality averaged over
   // neighbourhoods (core/graph/denoise.h), a view not: a depth sensor's noise runs along its rays,
   // mostly along the normals that the projection takes it out along (docs/sampling.md).
@@ -156,7 +163,7 @@ Analyses surfaceAnalysis(const std::vector<float>& xyz, CsrGraph graph,
     if (progress)
       progress("LRef", share(i + 1));
   }
-  bendStages(each, xyz, params, viewpoint, times);
+  bendStages(each, xyz, params, viewpoint, noise.projected, times);
   out.weights = distinct.weight;
   return out;
 }
@@ -229,7 +236,7 @@ Analyses analyze(PointSet points, const Parameters& params, PhaseTimes& times,
         points.sensor_origin && !points.rim.empty() ? points.sensor_origin->data() : nullptr;
     out = surfaceAnalysis(points.xyz, std::move(surface.graph), std::move(points.rim), params,
                           rank.data(), times, progress,
-                          surface.noise.projected || surface.noise.irregular, viewpoint);
+                          surface.noise, viewpoint);
   }
   for (std::size_t i = out.starts.size(); i-- > 0;) { // the first takes the order, the others copy
     Analysis& a = out.starts[i];
