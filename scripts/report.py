@@ -31,6 +31,7 @@ INPUTS = [  # (folder, mode in models.csv, label)
     ("views_unknown_origin", "crop", "view: crop, origin unknown"),
     ("views_unknown_origin", "voxel", "view: voxel crop, origin unknown"),
     ("views_unknown_origin", "laser", "view: laser-like, origin unknown"),
+    ("given", "given", "face centroids, the people's count given"),
 ]
 SPLITS = ("dev", "val")
 HALVES = ("1-3", "4-6")

@@ -34,7 +34,8 @@ Oriented sphere(std::size_t n, float r) {
   for (std::size_t i = 0; i < n; ++i) {
     const double z = 1.0 - 2.0 * (static_cast<double>(i) + 0.5) / static_cast<double>(n);
     const double rho = std::sqrt(1.0 - z * z), phi = golden * static_cast<double>(i);
-    const auto x = static_cast<float>(rho * std::cos(phi)), y = static_cast<float>(rho * std::sin(phi));
+    const auto x = static_cast<float>(rho * std::cos(phi)),
+               y = static_cast<float>(rho * std::sin(phi));
     s.add(r * x, r * y, r * static_cast<float>(z), x, y, static_cast<float>(z));
   }
   return s;
@@ -139,8 +140,7 @@ TEST(Thickness, NeitherThreadsNorPointOrderChangeIt) {
 
 TEST(Thickness, ASupernodesThicknessIsItsMedian) {
   const float nan = std::nanf("");
-  const std::vector<float> t =
-      supernodeThickness({1, 5, 2, nan, 7, nan}, {0, 0, 0, 1, 1, 2}, 3);
+  const std::vector<float> t = supernodeThickness({1, 5, 2, nan, 7, nan}, {0, 0, 0, 1, 1, 2}, 3);
   ASSERT_EQ(t.size(), 3u);
   EXPECT_EQ(t[0], 2.0f);
   EXPECT_EQ(t[1], 7.0f);
@@ -153,8 +153,8 @@ TEST(Thickness, AThinnerNeighbourMeetsAtAWeakerEdge) {
   st.height = {1, 2, 4};
   st.area = {2, 2, 8};
   st.width = {2, 1, 2};
-  const Connectivity conn = {{{0, 0}, 4.0}, {{1, 1}, 2.0}, {{2, 2}, 8.0}, {{0, 2}, 1.0},
-                             {{1, 2}, 3.0}};
+  const Connectivity conn = {
+      {{0, 0}, 4.0}, {{1, 1}, 2.0}, {{2, 2}, 8.0}, {{0, 2}, 1.0}, {{1, 2}, 3.0}};
   SimilarityParams p;
   p.adjacency = Adjacency::Saddles;
   const Supernodes sn = test::threeSupernodes();
@@ -164,7 +164,7 @@ TEST(Thickness, AThinnerNeighbourMeetsAtAWeakerEdge) {
   const std::vector<float> even = {1, 1, 1}, thin = {1, 1, 0.1f}, unknown = {1, 1, NAN};
   EXPECT_GT(weight(&even), 0.0);
   EXPECT_LT(weight(&thin), weight(&even));
-  EXPECT_EQ(weight(&even), weight(nullptr));   // equal thickness: eq. (9) as without the cue
+  EXPECT_EQ(weight(&even), weight(nullptr));    // equal thickness: eq. (9) as without the cue
   EXPECT_EQ(weight(&unknown), weight(nullptr)); // an open view's supernodes: eq. (9) unchanged
   p.thickness = false;
   EXPECT_EQ(weight(&thin), weight(nullptr));

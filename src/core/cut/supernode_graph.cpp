@@ -154,9 +154,8 @@ public:
   SupernodeEdges(const FeatureStats& stats, const Connectivity& conn,
                  const SimilarityParams& params, const Connectivity* concavity,
                  const std::vector<float>* thickness, std::uint32_t l, WeightedGraph& g)
-      : stats_(stats), conn_(conn), params_(params), concavity_(concavity),
-        thickness_(thickness), l_(l), g_(g),
-        scales_(stats, conn, params, l), tree_(l) {
+      : stats_(stats), conn_(conn), params_(params), concavity_(concavity), thickness_(thickness),
+        l_(l), g_(g), scales_(stats, conn, params, l), tree_(l) {
     std::iota(tree_.begin(), tree_.end(), 0u);
   }
 

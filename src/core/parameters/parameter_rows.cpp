@@ -159,10 +159,10 @@ void similarityRows(Rows& t) {
           "the pair's contact is",
           false),
       above(0), FIELD(similarity.concavity), "off"));
-  t.push_back(boolean(row("thickness", "similarity.thickness", S::Similarity, K::Boolean,
-                          "on|off",
+  t.push_back(boolean(row("thickness", "similarity.thickness", S::Similarity, K::Boolean, "on|off",
                           "thin parts: eq. (9)'s width ratio also times the ratio of the two "
-                          "supernodes' thickness (medial balls), on closed surfaces",
+                          "supernodes' thickness (medial balls), on closed surfaces without "
+                          "noise",
                           false),
                       FIELD(similarity.thickness)));
   t.push_back(number<double, std::optional<double>>(

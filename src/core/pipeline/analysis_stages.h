@@ -50,8 +50,8 @@ Analysis featureStages(CsrGraph graph, Centrality centrality, const Parameters& 
 /** \brief Oriented normals and the model's mean bend per kNN edge, for the crease and
  * concavity stages (core/cut/concavity.h). */
 struct SurfaceBends {
-  std::vector<float> normals; ///< 3 floats per vertex, oriented consistently
-  double typical_bend = 0.0;  ///< meanAbsBend()
+  std::vector<float> normals;      ///< 3 floats per vertex, oriented consistently
+  double typical_bend = 0.0;       ///< meanAbsBend()
   std::vector<float> medial_radii; ///< per vertex, medialRadii() (core/cut/thickness.h); thickness
 };
 /** \param[in] thickness  also the medial radii (of a closed surface without noise: the

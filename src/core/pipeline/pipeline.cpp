@@ -109,8 +109,7 @@ void bendStages(std::vector<Analysis>& each, const std::vector<float>& xyz,
   // apart than the noise (on a noisy cloud a thin part's sides are a few noise widths apart).
   const bool thickness = needs.thickness && each[0].rim.empty() && !noisy;
   const SurfaceBends bends =
-      surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint,
-                   thickness);
+      surfaceBends(*each[0].graph, xyz.data(), params.execution.num_threads, viewpoint, thickness);
   for (Analysis& one : each) {
     if (creases)
       creaseStage(one, xyz.data(), bends, params);
@@ -235,8 +234,7 @@ Analyses analyze(PointSet points, const Parameters& params, PhaseTimes& times,
     const float* viewpoint =
         points.sensor_origin && !points.rim.empty() ? points.sensor_origin->data() : nullptr;
     out = surfaceAnalysis(points.xyz, std::move(surface.graph), std::move(points.rim), params,
-                          rank.data(), times, progress,
-                          surface.noise, viewpoint);
+                          rank.data(), times, progress, surface.noise, viewpoint);
   }
   for (std::size_t i = out.starts.size(); i-- > 0;) { // the first takes the order, the others copy
     Analysis& a = out.starts[i];
