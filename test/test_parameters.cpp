@@ -246,9 +246,11 @@ TEST(CorePipeline, AnalysisServesACutOnlyWithWhatItMeasured) {
   p.similarity.concavity.reset();
   p.boundary.band.reset();
   p.boundary.rim_merge.reset();
+  p.similarity.thickness = false;
   EXPECT_FALSE(cutNeeds(p).concavity);
   EXPECT_FALSE(cutNeeds(p).crease);
   EXPECT_FALSE(cutNeeds(p).rim);
+  EXPECT_FALSE(cutNeeds(p).thickness);
   Parameters merge_only = p;
   merge_only.boundary.rim_merge = 10.0;
   EXPECT_TRUE(cutNeeds(merge_only).rim) << "the rim merge fits planes to the rim's sides";
@@ -258,6 +260,8 @@ TEST(CorePipeline, AnalysisServesACutOnlyWithWhatItMeasured) {
   a.measured.concavity = a.measured.crease = true;
   EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the rim's bends";
   a.measured.rim = true;
+  EXPECT_FALSE(serves(a, Parameters())) << "the defaults' cut needs the supernodes' thickness";
+  a.measured.thickness = true;
   EXPECT_TRUE(serves(a, Parameters()));
   Parameters cad;
   cad.cad.enabled = true;

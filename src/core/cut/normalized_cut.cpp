@@ -174,7 +174,9 @@ SweepResult sweepSplitValues(const Local& g, const Core& core, const Eigen::Vect
       }
       const bool both_sides = members1 > 0 && members1 < members; // both must hold points
       if (both_sides) {
-        const double ncut = ratio(cut, vol1) + ratio(cut, total - vol1);
+        // The cut is summed edge by edge as vertices move: a free cut can round below zero.
+        const double free_or_cut = std::max(cut, 0.0);
+        const double ncut = ratio(free_or_cut, vol1) + ratio(free_or_cut, total - vol1);
         if (ncut < out.ncut) {
           out.ncut = ncut;
           out.moved = moved;
