@@ -248,6 +248,8 @@ def peer_wins(s, md):
         if not s.halves("defaults", folder, mode, "ours"):
             continue
         for method, cfg, name in PEERS:
+            if not s.halves(cfg, folder, mode, method):
+                continue  # no run of this peer here (the count given: the peers take none)
             lower = []
             for split in SPLITS:
                 names = []
