@@ -14,6 +14,7 @@
 #include "cli/output.h"
 #include "cli/paths.h"
 #include "cli/progress.h"
+#include "files/values.h"
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
@@ -94,46 +95,41 @@ void addField(pcl::PCLPointCloud2& blob, const char* name, std::uint8_t type) {
 }
 
 std::size_t fieldSize(const pcl::PCLPointField& f) {
-  std::size_t bytes = 4;
-  switch (f.datatype) {
-  case pcl::PCLPointField::INT8:
-  case pcl::PCLPointField::UINT8:
-    bytes = 1;
-    break;
-  case pcl::PCLPointField::INT16:
-  case pcl::PCLPointField::UINT16:
-    bytes = 2;
-    break;
-  case pcl::PCLPointField::FLOAT64:
-    bytes = 8;
-    break;
-  default:
-    break;
-  }
-  return bytes * std::max<std::uint32_t>(f.count, 1);
+  return pcl_ncut_seg::files::typeSize(f.datatype) * std::max<std::uint32_t>(f.count, 1);
 }
 
-/** The output cloud. By default exactly x y z rgb label; with keep_fields, every field of the
- * input except an old label, then label. rgb is packed into a float as pcl::PointXYZRGB stores
- * it (alpha 0), so pcl_viewer colours the points by segment; label 0 is black. */
-pcl::PCLPointCloud2 makeOutput(const pcl::PCLPointCloud2& input,
-                               const std::vector<std::uint32_t>& labels, bool keep_fields) {
+/** The fields x, y, z of pcl::PointXYZ: the points as read and segmented. */
+std::vector<pcl::PCLPointField> xyzFields() {
+  std::vector<pcl::PCLPointField> fields(3);
+  for (std::uint32_t c = 0; c < 3; ++c) {
+    fields[c].name = std::string(1, static_cast<char>('x' + c));
+    fields[c].offset = 4 * c;
+    fields[c].datatype = pcl::PCLPointField::FLOAT32;
+    fields[c].count = 1;
+  }
+  return fields;
+}
+
+/** The output cloud. By default exactly x y z (float, the points as read) rgb label, whatever
+ * the input's types and order of fields; with keep_fields, every field of the input except an
+ * old label, then label. rgb is packed into a float as pcl::PointXYZRGB stores it (alpha 0),
+ * so pcl_viewer colours the points by segment; label 0 is black. */
+pcl::PCLPointCloud2 makeOutput(const Input& input, const std::vector<std::uint32_t>& labels,
+                               bool keep_fields) {
   pcl::PCLPointCloud2 blob;
-  blob.header = input.header;
-  blob.width = input.width;
-  blob.height = input.height;
-  blob.is_dense = input.is_dense;
+  blob.header = input.blob.header;
+  blob.width = input.blob.width;
+  blob.height = input.blob.height;
+  blob.is_dense = input.blob.is_dense;
   blob.is_bigendian = false;
   blob.point_step = 0;
-  // Fields to copy from the input: (input offset, output offset, size).
+  // Fields to copy from the input's blob, or from its points: (input offset, output offset, size).
   struct Copy {
     std::size_t from, to, size;
   };
   std::vector<Copy> copies;
-  for (const pcl::PCLPointField& f : input.fields) {
-    const bool wanted =
-        keep_fields ? f.name != "label" : (f.name == "x" || f.name == "y" || f.name == "z");
-    if (!wanted)
+  for (const pcl::PCLPointField& f : keep_fields ? input.blob.fields : xyzFields()) {
+    if (f.name == "label")
       continue;
     pcl::PCLPointField out = f;
     out.offset = blob.point_step;
@@ -151,7 +147,8 @@ pcl::PCLPointCloud2 makeOutput(const pcl::PCLPointCloud2& input,
   const std::size_t n = labels.size();
   blob.data.resize(static_cast<std::size_t>(blob.point_step) * n);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* in = &input.data[i * input.point_step];
+    const auto* in = keep_fields ? &input.blob.data[i * input.blob.point_step]
+                                 : reinterpret_cast<const std::uint8_t*>((*input.cloud)[i].data);
     std::uint8_t* out = &blob.data[i * blob.point_step];
     for (const Copy& c : copies)
       std::memcpy(out + c.to, in + c.from, c.size);
@@ -379,7 +376,7 @@ bool writeSegmentFiles(const Command& cmd, const pcl::PCLPointCloud2& blob,
 bool writeOutputs(const Command& cmd, const Input& input, const std::vector<std::uint32_t>& labels,
                   std::size_t num_segments, ProgressBar& progress, Outputs& outputs) {
   progress.update("Write", 0.0);
-  const pcl::PCLPointCloud2 blob = makeOutput(input.blob, labels, cmd.keep_fields);
+  const pcl::PCLPointCloud2 blob = makeOutput(input, labels, cmd.keep_fields);
   if (!writePcd(outputs.labelled, blob, cmd.encoding, input.sensor) ||
       (!cmd.split_prefix.empty() &&
        !writeSegmentFiles(cmd, blob, input.sensor, labels, num_segments, outputs)))

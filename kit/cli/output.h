@@ -4,6 +4,8 @@
  */
 #pragma once
 
+#include "files/pcd_reader.h"
+
 #include <pcl/PCLPointCloud2.h>
 
 #include <Eigen/Geometry>
@@ -41,10 +43,7 @@ enum class PcdEncoding {
 
 /** \brief The sensor's pose, a PCD file's VIEWPOINT (PCL's sensor_origin_ and
  * sensor_orientation_); none given: the origin and no rotation. */
-struct SensorPose {
-  Eigen::Vector4f origin = Eigen::Vector4f::Zero();
-  Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
-};
+using SensorPose = files::Viewpoint;
 
 /** \brief Write a cloud as PCD, with the sensor's pose as its VIEWPOINT, to the file's
  * temporary path; one error line on failure. */

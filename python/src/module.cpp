@@ -4,6 +4,7 @@
  * pcl::SupernodeNCutSegmentation<pcl::PointNormal>. Parameters go by the names of the table in
  * pcl_ncut_seg/parameter_table.h (the tools' flags without the '-').
  */
+#include "files.h"
 #include "segmenter.h"
 #include "values.h"
 
@@ -104,6 +105,7 @@ py::list shorthandList() {
 PYBIND11_MODULE(_pcl_ncut_seg, m) {
   m.doc() = kModuleDoc;
   m.attr("__version__") = PCL_NCUT_SEG_VERSION;
+  pcl_ncut_seg_python::defineFiles(m);
 
   m.def(
       "segment",
