@@ -14,7 +14,11 @@ parameter_table() lists them with their ranges and defaults. None turns an optio
 off (or to auto), True/False are on/off, paper=True starts from the paper's settings. A bad
 cloud or parameter raises ValueError with the library's reason. Segmenter keeps the expensive
 stage between calls. colorize(cloud, labels) colours an Open3D cloud by segment.
+read_file(path) reads a .pcd, .ply, .npy, .off or .obj file as the pcl_ncut_seg tool reads it.
 """
+import os
+
+
 from . import _pcl_ncut_seg as _core
 from ._clouds import as_arrays, colorize, segment_colors
 from ._pcl_ncut_seg import __version__, default_parameters, parameter_shorthands, parameter_table
@@ -27,6 +31,7 @@ __all__ = [
     "default_parameters",
     "parameter_shorthands",
     "parameter_table",
+    "read_file",
     "segment",
     "segment_colors",
 ]
@@ -55,6 +60,23 @@ def segment(points, normals=None, sensor_origin=None, **parameters):
     """
     points, normals = as_arrays(points, normals)
     return _core.segment(points, normals, sensor_origin, **parameters)
+
+
+def read_file(path, samples=0, seed=1):
+    """read_file(path, samples=0, seed=1) -> (points, viewpoint, faces, description)
+
+    Read a file as the pcl_ncut_seg tool reads it, with its reader: a .pcd (ascii, binary or
+    binary_compressed), a .ply (points, or a mesh when it has faces), an .npy of points, an .off
+    or .obj mesh. A mesh becomes one point per face centroid, or samples points uniformly by
+    area (seed: their random seed).
+
+    points: float32, (N, 3), or (H, W, 3) for an organized cloud; viewpoint: the PCD's
+    VIEWPOINT (tx, ty, tz, qw, qx, qy, qz: the sensor origin, then its orientation); faces: the
+    mesh's number of faces, None for a point cloud; description: what was read, in words.
+    Raises ValueError with the tool's one-line reason for a file it cannot read, or that holds
+    no point with finite coordinates.
+    """
+    return _core.read_file(os.fspath(path), samples, seed)
 
 
 class Segmenter(_core.Segmenter):

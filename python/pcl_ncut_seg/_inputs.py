@@ -27,7 +27,7 @@ class Cloud:
 def read_cloud(path):
     """The Cloud of a file; InputError with the tool's reason when the tool cannot read it."""
     try:
-        points, viewpoint, faces, _ = _core.read_file(os.fspath(path))
+        points, viewpoint, faces, _ = _core.read_file(os.fspath(path))  # read_file()'s
     except ValueError as error:
         raise InputError(str(error)) from None
     return Cloud(points, viewpoint, faces)

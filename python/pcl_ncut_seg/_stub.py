@@ -20,6 +20,8 @@ FUNCTIONS = {
     "as_arrays": "(cloud: _Cloud, normals: npt.ArrayLike | None = None) -> tuple[Any, Any]",
     "segment_colors": "(labels: npt.ArrayLike) -> npt.NDArray[np.uint8]",
     "colorize": "(cloud: _O3DCloud, labels: npt.ArrayLike) -> _O3DCloud",
+    "read_file": "(path: str | os.PathLike[str], samples: int = 0, seed: int = 1) -> "
+                 "tuple[npt.NDArray[np.float32], tuple[float, ...], int | None, str]",
 }
 METHODS = {
     "get": "(self, name: str) -> Any",
@@ -47,6 +49,7 @@ KIND_TYPES = {"integer": "int", "real": "float", "switch": "bool", "boolean": "b
 
 HEADER = '''# The type stub of pcl_ncut_seg {version}, written by pcl_ncut_seg/_stub.py from the
 # module's parameter table when the module was built. Do not edit: rebuild.
+import os
 from typing import Any, Literal, TypeVar
 
 import numpy as np
