@@ -58,22 +58,22 @@ bool parseDescr(const std::string& dict, ArrayHeader& a, std::string& error) {
 }
 
 bool parseShape(const std::string& dict, ArrayHeader& a, std::string& error) {
-  std::size_t at = valueOf(dict, "shape");
+  const std::size_t at = valueOf(dict, "shape");
   const std::size_t end = at == std::string::npos ? at : dict.find(')', at);
-  bool ok = at != std::string::npos && end != std::string::npos && dict[at] == '(';
-  for (const std::string& w : words(dict.data() + at + 1, dict.data() + (ok ? end : at + 1))) {
-    std::string n = w;
-    n.erase(std::remove(n.begin(), n.end(), ','), n.end());
-    std::uint64_t v = 0;
-    ok = ok && parseCount(n, v);
-    a.shape.push_back(v);
-  }
+  bool ok = end != std::string::npos && dict[at] == '(';
+  if (ok)
+    for (std::string n : words(dict.data() + at + 1, dict.data() + end)) {
+      n.erase(std::remove(n.begin(), n.end(), ','), n.end());
+      std::uint64_t v = 0;
+      ok = ok && parseCount(n, v);
+      a.shape.push_back(v);
+    }
   const std::size_t fortran = valueOf(dict, "fortran_order");
   ok = ok && fortran != std::string::npos;
   a.fortran = ok && dict.compare(fortran, 4, "True") == 0;
   ok = ok && (a.fortran || dict.compare(fortran, 5, "False") == 0);
   if (!ok)
-    error = "not a valid .npy file: its header has no shape or fortran_order";
+    error = "its header has no shape or fortran_order";
   else if ((a.shape.size() != 2 && a.shape.size() != 3) || a.shape.back() != 3) {
     std::string shape;
     for (std::uint64_t v : a.shape)
@@ -88,7 +88,7 @@ bool readHeader(const FileBytes& file, ArrayHeader& a, std::string& error) {
   unsigned char start[12];
   if (file.size() < 10 || !file.read(0, 10, start, error) ||
       std::memcmp(start, "\x93NUMPY", 6) != 0 || start[6] < 1 || start[6] > 3) {
-    error = "not a valid .npy file (no \\x93NUMPY header of version 1, 2 or 3)";
+    error = "no \\x93NUMPY header of version 1, 2 or 3";
     return false;
   }
   std::uint64_t length = start[8] | (start[9] << 8), offset = 10;
@@ -102,8 +102,7 @@ bool readHeader(const FileBytes& file, ArrayHeader& a, std::string& error) {
   std::string dict(static_cast<std::size_t>(std::min<std::uint64_t>(length, kMaxHeaderBytes)),
                    '\0');
   if (length > kMaxHeaderBytes || !file.read(offset, dict.size(), dict.data(), error)) {
-    error =
-        "not a valid .npy file: its header of " + std::to_string(length) + " bytes is cut short";
+    error = "its header of " + std::to_string(length) + " bytes is cut short";
     return false;
   }
   a.data_offset = offset + length;
