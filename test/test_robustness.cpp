@@ -354,6 +354,28 @@ TEST(Robustness, DenseClusterWithOneFarOutlier) {
   EXPECT_GE(ri, 0.99);
 }
 
+TEST(Robustness, PointsTooFarToMeasureAreInNoSegment) {
+  // Coordinates near FLT_MAX (a corrupt file's garbage) overflow the squared distances of the
+  // kNN search: FLANN's tree recursed until the stack ran out. They are in no segment, as NaN
+  // points are, and the rest is segmented as without them.
+  const LabeledShape hand = makeHand(2000, 8);
+  Cloud::Ptr c(new Cloud(*hand.cloud));
+  for (int i = 0; i < 300; ++i)
+    c->push_back(pcl::PointXYZ(i % 2 ? 3.3e38f : -2e38f, 1e19f * float(i % 7), 0.5f));
+  const Segments with = segment(c, [](Seg& s) { s.setNumberOfSegments(6); });
+  const Segments without = segment(hand.cloud, [](Seg& s) { s.setNumberOfSegments(6); });
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t s = 0; s < with.size(); ++s)
+    EXPECT_EQ(with[s].indices, without[s].indices) << "segment " << s;
+
+  Cloud::Ptr far(new Cloud);
+  for (int i = 0; i < 100; ++i)
+    far->push_back(pcl::PointXYZ(2e18f * float(i + 1), 0, 0));
+  Seg seg;
+  seg.setInputCloud(far);
+  expectErrorAndNothing(seg, extractCapturing(seg), "no finite point within 1e18");
+}
+
 TEST(Robustness, KnnGraphDropsTheEdgesOfALoneFarPoint) {
   // Points 1 apart on a line, k = 2: kNN radius 1 inside, 2 at the end point 49. A single
   // point p beyond the end has 49 and 48 as its nearest; an edge is used unless it is over 10

@@ -79,6 +79,9 @@ template <typename PointT> bool inputNormal(const PointT& p, float* n) {
     return false;
   }
 }
+/// Points farther from the origin are in no segment, as non-finite ones: the kNN search and
+/// the analysis square coordinate differences in float, which overflows beyond about 5e18.
+constexpr float kMaxCoordinate = 1e18f;
 } // namespace ncut_detail
 } // namespace pcl
 
@@ -86,6 +89,7 @@ template <typename PointT>
 bool pcl::SupernodeNCutSegmentation<PointT>::validIndices(std::vector<int>& valid) const {
   const std::size_t cloud_size = input_->size();
   valid.reserve(indices_->size());
+  std::size_t too_far = 0;
   for (const auto idx : *indices_) {
     if (idx < 0 || static_cast<std::size_t>(idx) >= cloud_size) {
       PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] index %d is out of range for a "
@@ -93,9 +97,20 @@ bool pcl::SupernodeNCutSegmentation<PointT>::validIndices(std::vector<int>& vali
                 static_cast<int>(idx), cloud_size);
       return false;
     }
-    if (pcl::isXYZFinite((*input_)[idx]))
+    const PointT& p = (*input_)[idx];
+    if (!pcl::isXYZFinite(p))
+      continue;
+    if (std::abs(p.x) <= ncut_detail::kMaxCoordinate &&
+        std::abs(p.y) <= ncut_detail::kMaxCoordinate &&
+        std::abs(p.z) <= ncut_detail::kMaxCoordinate)
       valid.push_back(static_cast<int>(idx));
+    else
+      ++too_far;
   }
+  if (too_far > 0)
+    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] %zu points with a coordinate beyond "
+             "1e18 are in no segment: their squared distances overflow a float.\n",
+             too_far);
   if (!std::is_sorted(valid.begin(), valid.end())) // the usual indices are sorted already
     std::sort(valid.begin(), valid.end());
   const std::size_t before = valid.size();
@@ -108,7 +123,8 @@ bool pcl::SupernodeNCutSegmentation<PointT>::validIndices(std::vector<int>& vali
     return false;
   }
   if (valid.empty()) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point.\n");
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point%s.\n",
+              too_far > 0 ? " within 1e18 of the origin" : "");
     return false;
   }
   return true;
