@@ -53,7 +53,8 @@ bool parseDescr(const std::string& dict, ArrayHeader& a, std::string& error) {
     }
   }
   if (a.type == 0)
-    error = "an .npy of points holds numbers (float32, float64 or integers), not '" + d + "'";
+    error = "an .npy of points holds numbers (float32, float64 or integers), not " +
+            quoted(d.data(), d.data() + d.size());
   return a.type != 0;
 }
 
