@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 
 namespace pcl_ncut_seg {
 
@@ -72,21 +73,27 @@ std::size_t PointSegmenter::numVertices() const {
   return prepared_->points.raw.size() / 3;
 }
 
-void PointSegmenter::analyze(const Parameters& params, PhaseTimes& times,
-                             const PhaseProgressFn& progress, const NeighbourSearch& search,
-                             const CadNormals& normals) {
+Status PointSegmenter::analyze(const Parameters& params, PhaseTimes& times,
+                               const PhaseProgressFn& progress, const NeighbourSearch& search,
+                               const CadNormals& normals) {
   Stopwatch clock;
   PreparedPoints& prepared = prepared_->points;
   const std::size_t n = numVertices();
   if (n == 0) { // nothing prepared: no analysis (a misuse, not a crash)
     analyses_.reset();
-    return;
+    return Status::failure(StatusCode::NoInput, "no points prepared.");
   }
+  Status status;
   if (progress)
     progress("kNN", 0.0);
   // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points).
   PointSet& set = prepared.set;
   set.k = std::min<std::size_t>(static_cast<std::size_t>(params.graph.k), n - 1);
+  if (set.k < static_cast<std::size_t>(params.graph.k))
+    status.warnings.push_back(
+        {WarningCode::FewPoints, "only " + std::to_string(n) + " points: using " +
+                                     std::to_string(set.k) + " neighbours instead of " +
+                                     std::to_string(params.graph.k) + "."});
   set.knn.assign(n * std::max<std::size_t>(set.k, 1), kNone);
   const int threads = usableThreads(params.execution.num_threads);
   if (set.k > 0 && !search) // the default: FLANN's kd-tree as pcl::search::KdTree builds it
@@ -102,6 +109,7 @@ void PointSegmenter::analyze(const Parameters& params, PhaseTimes& times,
   analyses_ = std::make_shared<const Analyses>(
       pcl_ncut_seg::analyze(std::move(set), params, times, progress));
   prepared = PreparedPoints();
+  return status;
 }
 
 bool PointSegmenter::serves(const Parameters& params) const {
@@ -121,11 +129,40 @@ std::size_t PointSegmenter::numSegments() const {
 std::size_t PointSegmenter::start() const {
   return result_->start;
 }
-const Hierarchy& PointSegmenter::hierarchy() const {
-  return result_->hierarchy;
+SegmentTree PointSegmenter::hierarchy() const {
+  const Hierarchy& h = result_->hierarchy;
+  SegmentTree tree;
+  tree.num_supernodes = result_->graph.num_vertices / 2; // G_s: r_i = i, m_i = l + i
+  const auto l = static_cast<std::uint32_t>(tree.num_supernodes);
+  tree.nodes.resize(h.nodes.size());
+  for (std::size_t i = 0; i < h.nodes.size(); ++i) {
+    const Hierarchy::Node& from = h.nodes[i];
+    SegmentTree::Node& to = tree.nodes[i];
+    to.parent = from.parent;
+    to.left = from.left;
+    to.right = from.right;
+    if (from.has_split)
+      to.ncut = from.ncut;
+    to.vertices = from.vertices;
+    for (const std::uint32_t v : from.vertices) // sorted: the members come last, sorted
+      if (v >= l)
+        to.supernodes.push_back(v - l);
+  }
+  const std::vector<std::uint32_t>& segment = result_->supernode_segment;
+  tree.supernode_segment.reserve(segment.size());
+  for (const std::uint32_t s : segment)
+    tree.supernode_segment.push_back(s < result_->num_segments ? static_cast<int>(s) : -1);
+  return tree;
 }
-const WeightedGraph& PointSegmenter::supernodeGraph() const {
-  return result_->graph;
+SupernodeGraph PointSegmenter::supernodeGraph() const {
+  const WeightedGraph& g = result_->graph;
+  SupernodeGraph out;
+  out.num_vertices = g.num_vertices;
+  out.num_supernodes = g.num_vertices / 2;
+  out.edges.reserve(g.edges.size());
+  for (const WeightedGraph::Edge& e : g.edges)
+    out.edges.push_back({e.a, e.b, e.w});
+  return out;
 }
 const CutResult& PointSegmenter::result() const {
   return *result_;
@@ -167,15 +204,26 @@ const Analysis* PointSegmenter::analysis() const {
   return analyses_ ? &analyses_->starts.at(0) : nullptr;
 }
 
-std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n,
-                                         const Parameters& params) {
-  if (n == 0 || !validate(params))
+std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n, const Parameters& params,
+                                         Status* status) {
+  Status ignored;
+  Status& out = status ? *status : ignored;
+  std::string why;
+  if (!validate(params, &why)) {
+    out = Status::failure(StatusCode::BadParameter, why);
     return {};
+  }
+  if (n == 0) {
+    out = Status::failure(StatusCode::NoFinitePoint, "the input has no finite point.");
+    return {};
+  }
   PointSegmenter segmenter;
   const PointSegmenter::VertexMap map =
       segmenter.prepare(std::vector<float>(xyz, xyz + 3 * n), params);
   PhaseTimes times;
-  segmenter.analyze(params, times);
+  out = segmenter.analyze(params, times);
+  if (!out.ok())
+    return {};
   segmenter.cut(params, times);
   const std::vector<std::uint32_t>& segment = segmenter.pointSegments();
   std::vector<std::uint32_t> label(n);

@@ -4,7 +4,7 @@
  */
 #include "core/graph/bridging.h"
 #include "core/graph/csr_graph.h"
-#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
+#include "core/model/model.h" // what getAnalysis() points to
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/graphs.h"

@@ -4,7 +4,7 @@
  * noise: each face must come out as one segment (Rand index against the faces) and a rigid
  * motion must not change the result. The core over plain arrays: test_cad_core.cpp.
  */
-#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
+#include "core/model/model.h" // what getAnalysis() points to
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <shapes/cad_shapes.h>

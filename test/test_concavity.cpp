@@ -4,7 +4,7 @@
  */
 #include "core/cut/concavity.h"
 #include "core/graph/csr_graph.h"
-#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
+#include "core/model/model.h" // what getAnalysis() points to
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include "support/knn_graph.h"
@@ -170,8 +170,8 @@ TEST(ConcavityWeight, ConcaveContactsGetWeakerEdges) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, double> out;
     const std::size_t l = seg.getNumberOfSupernodes(true);
     for (const auto& e : seg.getSupernodeGraph().edges)
-      if (e.a >= l && e.b >= l)
-        out[{e.a, e.b}] = e.w;
+      if (e.source >= l && e.target >= l)
+        out[{e.source, e.target}] = e.weight;
     return out;
   };
   const auto off = memberWeights(std::nullopt);

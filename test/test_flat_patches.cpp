@@ -3,7 +3,7 @@
  * SupernodeNCutSegmentation::setFlatElongation).
  */
 #include "core/cut/supernode_graph.h"
-#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
+#include "core/model/model.h" // what getAnalysis() points to
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <surfaces/mesh_sampling.h>

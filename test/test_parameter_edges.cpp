@@ -4,7 +4,7 @@
  * its setter and through setParameter() and setParameters() for every row of the parameter
  * table; and determinism: bit-identical output across runs and thread counts.
  */
-#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
+#include "core/model/model.h" // what getAnalysis() points to
 #include <pcl_ncut_seg/parameter_table.h>
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <shapes/metrics.h>

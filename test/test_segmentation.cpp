@@ -1,5 +1,5 @@
 // The PCL front end: input checks, parameters, the two stages, outputs.
-#include "core/model/model.h" // what getAnalysis(), getHierarchy() point to
+#include "core/model/model.h" // what getAnalysis() points to
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 #include <shapes/metrics.h>
 #include <shapes/shapes.h>

@@ -9,6 +9,8 @@
 
 #include <pcl_ncut_seg/analysis_report.h>
 #include <pcl_ncut_seg/parameters.h>
+#include <pcl_ncut_seg/segment_tree.h>
+#include <pcl_ncut_seg/status.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -19,17 +21,22 @@
 
 namespace pcl_ncut_seg {
 
-struct Analysis;      // one start's analysis (the core's model)
-struct Analyses;      // the analyses of every start
-struct CutResult;     // the cut's result
-struct Hierarchy;     // Sec. 5.2's hierarchy of bisections
-struct WeightedGraph; // Sec. 5.1's G_s
+struct Analysis;  // one start's analysis (the core's model)
+struct Analyses;  // the analyses of every start
+struct CutResult; // the cut's result
 
 /** \brief The whole pipeline on n finite points (3 floats each) with FLANN's kd-tree for the
  * kNN graph: per point its segment in [0, t), the segments numbered by their first point.
  * The labels extract() of the PCL class gives for the same points and parameters (and no
- * sensor origin). Invalid parameters or no points: empty. */
-std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n, const Parameters& params);
+ * sensor origin). Invalid parameters or no points: empty.
+ * \param[in] xyz     3 floats per point, finite
+ * \param[in] n       the points
+ * \param[in] params  the parameters
+ * \param[out] status if not null: why the result is empty (StatusCode::BadParameter with the
+ *                    first bad parameter, StatusCode::NoFinitePoint for no points), and the
+ *                    warnings (WarningCode::FewPoints) */
+std::vector<std::uint32_t> segmentPoints(const float* xyz, std::size_t n, const Parameters& params,
+                                         Status* status = nullptr);
 
 /** \brief The segmentation of an array of points in its two stages: prepare() and analyze()
  * once per input (the expensive stage), then cut() for each set of cut parameters.
@@ -77,9 +84,11 @@ public:
   /** \brief The expensive stage on the prepared points: the k nearest neighbours (FLANN's
    * kd-tree as pcl::search::KdTree builds it, or search), CAD mode's normals (NaN without
    * normals), then the analysis (Secs. 4, 7). Reports the phases "kNN", "Cen", "Snod", "LRef".
-   * Adds the phases' times to times. Without prepared points: no analysis (analysed() false). */
-  void analyze(const Parameters& params, PhaseTimes& times, const PhaseProgressFn& progress = {},
-               const NeighbourSearch& search = {}, const CadNormals& normals = {});
+   * Adds the phases' times to times. Without prepared points: no analysis (analysed() false).
+   * \return StatusCode::NoInput without prepared points; WarningCode::FewPoints when fewer
+   * than graph.k + 1 vertices were prepared (each then has fewer neighbours) */
+  Status analyze(const Parameters& params, PhaseTimes& times, const PhaseProgressFn& progress = {},
+                 const NeighbourSearch& search = {}, const CadNormals& normals = {});
   /** \brief Whether there is an analysis. */
   bool analysed() const { return static_cast<bool>(analyses_); }
   /** \brief Whether the analysis holds what a cut with these parameters needs. */
@@ -96,9 +105,12 @@ public:
   std::size_t start() const;
   /** \brief Renumber the last cut's segments: segment s becomes rank[s]. */
   void renumberSegments(const std::vector<std::uint32_t>& rank);
-  const Hierarchy& hierarchy() const;          ///< of the last cut() (Sec. 5.2)
-  const WeightedGraph& supernodeGraph() const; ///< of the last cut() (Sec. 5.1)
-  const CutResult& result() const;             ///< the last cut()
+  /** \brief The hierarchy of bisections of the last cut() (Sec. 5.2), a copy; empty without
+   * one. Its supernode_segment follows renumberSegments(). */
+  SegmentTree hierarchy() const;
+  /** \brief The supernode graph G_s of the last cut() (Sec. 5.1), a copy; empty without one. */
+  SupernodeGraph supernodeGraph() const;
+  const CutResult& result() const; ///< the last cut() (the core's type)
 
   /// \name The analysis of a start (0: the first; start() after a cut), analysed()
   /// \{

@@ -17,10 +17,13 @@
 #include <pcl_ncut_seg/analysis_report.h>
 #include <pcl_ncut_seg/parameters.h>
 #include <pcl_ncut_seg/segment_points.h>
+#include <pcl_ncut_seg/segment_tree.h>
+#include <pcl_ncut_seg/status.h>
 
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -219,9 +222,21 @@ public:
 
   /** \brief Segment the input. Segments are ordered by their smallest point index; every
    * finite input point (within the indices) is in exactly one. On bad input, prints a
-   * PCL_ERROR and returns no segments.
+   * PCL_ERROR and returns no segments; getStatus() then says why.
    * \param[out] segments  the segments, each a list of input indices in ascending order */
   void extract(std::vector<pcl::PointIndices>& segments);
+
+  /** \brief The outcome of the last extract(): ok, or why it gave no segments (the reason its
+   * PCL_ERROR printed), and the warnings it printed with PCL_WARN (fewer points than k + 1,
+   * repeated indices), each with a code. Ok with no warnings before any extract(). */
+  const pcl_ncut_seg::Status& getStatus() const { return status_; }
+
+  /** \brief Whether this object prints its errors and warnings with PCL_ERROR and PCL_WARN
+   * (default: true). A front end that reports getStatus() itself (the Python module, the ROS
+   * node) turns them off; other objects and PCL's own messages are not affected.
+   * \param[in] print  print them (true) or only return them in getStatus() (false) */
+  void setConsoleMessages(bool print) { console_messages_ = print; }
+  bool getConsoleMessages() const { return console_messages_; }
 
   /** \brief The input cloud coloured by segment (distinct colours, the same on every run);
    * points in no segment are black. Empty before a successful extract(). */
@@ -264,14 +279,13 @@ public:
    * sensor_origin_ less the points' centroid, or one read off the points when the points are
    * no view from sensor_origin_), and how many points lie on the rim. */
   pcl_ncut_seg::ViewTest getViewTest() const;
-  /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2); its type is the
-   * core's (core/cut/normalized_cut.h, in the source tree). */
-  const pcl_ncut_seg::Hierarchy& getHierarchy() const { return segmenter_.hierarchy(); }
-  /** \brief The supernode graph G_s (Sec. 5.1); its type is the core's
-   * (core/cut/supernode_graph.h, in the source tree). */
-  const pcl_ncut_seg::WeightedGraph& getSupernodeGraph() const {
-    return segmenter_.supernodeGraph();
-  }
+  /** \brief The hierarchy of bisections over the supernode graph (Sec. 5.2): a tree whose
+   * root holds every vertex of G_s, each split node with the NCut of its bisection, and each
+   * supernode's segment (numbered as extract()'s). A copy; empty without a result. */
+  pcl_ncut_seg::SegmentTree getHierarchy() const { return segmenter_.hierarchy(); }
+  /** \brief The supernode graph G_s (Sec. 5.1): two vertices per refined supernode and the
+   * weighted edges of eqs. (7) and (9). A copy; empty without a result. */
+  pcl_ncut_seg::SupernodeGraph getSupernodeGraph() const { return segmenter_.supernodeGraph(); }
   /** \brief Wall time of each phase of the last extract() (Table 1's columns). */
   const pcl_ncut_seg::PhaseTimes& getPhaseTimes() const { return times_; }
   /** \brief The whole expensive stage (of the first start), or nullptr; its type is the
@@ -290,7 +304,11 @@ protected:
    * false on bad input. */
   bool analyze();
   /** \brief The valid points (in range, finite, each once), sorted; false on a bad index. */
-  bool validIndices(std::vector<int>& valid) const;
+  bool validIndices(std::vector<int>& valid);
+  /** \brief Record why extract() fails, and print it (setConsoleMessages()). */
+  void fail(pcl_ncut_seg::StatusCode code, std::string message);
+  /** \brief Record a warning of extract(), and print it. */
+  void warn(pcl_ncut_seg::WarningCode code, std::string message);
   /** \brief The k nearest neighbours of each vertex with the search method set. */
   void searchNeighbours(const std::vector<int>& vertex_index, std::size_t k, int threads,
                         std::uint32_t* knn);
@@ -315,6 +333,8 @@ protected:
                                                           ///< points at a vertex's position
   pcl_ncut_seg::PhaseTimes times_;
   bool have_result_ = false;
+  pcl_ncut_seg::Status status_; ///< of the last extract()
+  bool console_messages_ = true;
 
 public:
   PCL_MAKE_ALIGNED_OPERATOR_NEW

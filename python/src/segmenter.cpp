@@ -1,6 +1,5 @@
 #include "segmenter.h"
 
-#include "console_capture.h"
 #include "values.h"
 
 #include <algorithm>
@@ -125,6 +124,7 @@ pcl::PointCloud<pcl::PointNormal>::Ptr cloudFromArray(const py::handle& points,
 }
 
 Segmenter::Segmenter(const py::dict& keywords) {
+  seg_.setConsoleMessages(false); // the status is raised and warned in Python instead
   set(keywords);
   // The front end announces the kNN phase once per analysis: count them.
   seg_.setProgressCallback([this](const char* phase, double fraction) {
@@ -179,27 +179,18 @@ py::array_t<std::int32_t> Segmenter::segment(const py::object& points, const py:
   labels_.clear();
   const std::size_t analyses_before = analyses_;
   std::vector<pcl::PointIndices> segments;
-  std::string console;
   {
     BusyGuard busy(busy_);
-    py::gil_scoped_release release; // the capture may wait for another thread's
-    console = runCapturingConsole([&] { seg_.extract(segments); });
+    py::gil_scoped_release release; // other threads' segmenters run meanwhile
+    seg_.extract(segments);
   }
-  // The library's console output: its error is the ValueError's reason, its warnings become
-  // Python warnings, anything else goes back to stderr.
-  std::string error;
-  for (const ConsoleLine& line : splitConsoleLines(console)) {
-    if (!line.from_pcl) {
-      py::module_::import("sys").attr("stderr").attr("write")(line.text + "\n");
-    } else if (segments.empty()) {
-      error = line.text; // the last PCL line of a failed extract() says why
-    } else {
-      const py::object warn = py::module_::import("warnings").attr("warn");
-      warn(line.text, py::module_::import("builtins").attr("RuntimeWarning"), 1);
-    }
-  }
-  if (segments.empty())
-    throw py::value_error(error.empty() ? "the segmentation failed" : error);
+  // The library's status: its reason is the ValueError's, its warnings are Python's.
+  const pcl_ncut_seg::Status& status = seg_.getStatus();
+  if (!status.ok() || segments.empty())
+    throw py::value_error(status.message.empty() ? "the segmentation failed" : status.message);
+  const py::object warn = py::module_::import("warnings").attr("warn");
+  for (const pcl_ncut_seg::Warning& w : status.warnings)
+    warn(w.message, py::module_::import("builtins").attr("RuntimeWarning"), 1);
 
   const auto labeled = seg_.getLabeledCloud();
   labels_.resize(labeled->size());
@@ -252,10 +243,9 @@ py::array_t<std::int64_t> Segmenter::saddles() const {
 
 py::dict Segmenter::hierarchy() const {
   requireResult();
-  const pcl_ncut_seg::Hierarchy& h = seg_.getHierarchy();
-  const std::size_t m = h.nodes.size(), l = seg_.getNumberOfSupernodes(true);
-  const std::size_t columns = seg_.getSupernodeGraph().num_vertices;
-  const std::vector<std::uint32_t>& supernode_segment = seg_.result().supernode_segment;
+  const pcl_ncut_seg::SegmentTree h = seg_.getHierarchy();
+  const std::size_t m = h.nodes.size(), columns = 2 * h.num_supernodes;
+  const std::vector<int>& supernode_segment = h.supernode_segment;
   py::array_t<std::int32_t> parent(m), left(m), right(m), segment(m);
   py::array_t<double> ncut(m);
   py::array_t<bool> vertices({m, columns});
@@ -264,20 +254,20 @@ py::dict Segmenter::hierarchy() const {
   auto nc = ncut.mutable_unchecked<1>();
   auto ve = vertices.mutable_unchecked<2>();
   for (std::size_t i = 0; i < m; ++i) {
-    const pcl_ncut_seg::Hierarchy::Node& node = h.nodes[i];
+    const pcl_ncut_seg::SegmentTree::Node& node = h.nodes[i];
     const auto k = static_cast<py::ssize_t>(i);
     pa(k) = node.parent;
     le(k) = node.left;
     ri(k) = node.right;
-    nc(k) = node.has_split ? node.ncut : std::numeric_limits<double>::quiet_NaN();
+    nc(k) = node.ncut; // NaN where no bisection exists
     se(k) = 0;
     for (std::size_t c = 0; c < columns; ++c)
       ve(k, static_cast<py::ssize_t>(c)) = false;
-    for (std::uint32_t v : node.vertices) {
+    for (std::uint32_t v : node.vertices)
       ve(k, v) = true;
-      if (node.left < 0 && v >= l && v - l < supernode_segment.size())
-        se(k) = static_cast<std::int32_t>(supernode_segment[v - l] + 1);
-    }
+    for (std::uint32_t s : node.supernodes) // a leaf's segment: that of its supernodes
+      if (node.isLeaf() && s < supernode_segment.size())
+        se(k) = static_cast<std::int32_t>(supernode_segment[s] + 1);
   }
   py::dict d;
   d["parent"] = parent;
@@ -299,7 +289,7 @@ py::array_t<std::int32_t> Segmenter::supernodeSegments() const {
 
 py::dict Segmenter::supernodeGraph() const {
   requireResult();
-  const pcl_ncut_seg::WeightedGraph& g = seg_.getSupernodeGraph();
+  const pcl_ncut_seg::SupernodeGraph g = seg_.getSupernodeGraph();
   const std::size_t e = g.edges.size();
   py::array_t<std::int64_t> edges({e, std::size_t(2)});
   py::array_t<double> weights(e);
@@ -307,9 +297,9 @@ py::dict Segmenter::supernodeGraph() const {
   auto we = weights.mutable_unchecked<1>();
   for (std::size_t i = 0; i < e; ++i) {
     const auto k = static_cast<py::ssize_t>(i);
-    ed(k, 0) = g.edges[i].a;
-    ed(k, 1) = g.edges[i].b;
-    we(k) = g.edges[i].w;
+    ed(k, 0) = g.edges[i].source;
+    ed(k, 1) = g.edges[i].target;
+    we(k) = g.edges[i].weight;
   }
   py::dict d;
   d["num_vertices"] = g.num_vertices;

@@ -2,14 +2,14 @@
  * pcl_ncut_seg Python module: Segmenter, a pcl::SupernodeNCutSegmentation<pcl::PointNormal>
  * over a numpy array of points (and one of normals, which CAD mode reads). The PCL class does the
  * work (the same labels, the same checks); this class converts the array, the parameters and the
- * results, and turns the library's console errors into ValueError.
+ * results, and turns the library's status into a ValueError and RuntimeWarnings.
  */
 #pragma once
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
-#include "core/model/model.h" // the cut result, its hierarchy and G_s
+#include "core/model/model.h" // the cut result
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>
 
 #include <atomic>

@@ -88,18 +88,25 @@ std::string checkCloud(const sensor_msgs::PointCloud2& cloud) {
   return "";
 }
 
-CloudSegmenter::CloudSegmenter() {
+CloudSegmenter::CloudSegmenter() : seg_(newSegmentation(pcl_ncut_seg::Parameters())) {}
+
+std::unique_ptr<Segmentation>
+CloudSegmenter::newSegmentation(const pcl_ncut_seg::Parameters& params) {
+  auto seg = std::make_unique<Segmentation>();
+  seg->setConsoleMessages(false); // its reasons come back in its status, and go into why
+  seg->setParameters(params);
   // The analysis starts with the kNN phase: counting its starts tells an analysis from a re-cut.
-  seg_.setProgressCallback([this](const char* phase, double fraction) {
+  seg->setProgressCallback([this](const char* phase, double fraction) {
     if (fraction == 0.0 && std::strcmp(phase, "kNN") == 0)
       ++analyses_started_;
   });
+  return seg;
 }
 
 bool CloudSegmenter::setParameters(const pcl_ncut_seg::Parameters& params, std::string* why) {
   if (!pcl_ncut_seg::validate(params, why))
     return false;
-  return seg_.setParameters(params);
+  return seg_->setParameters(params);
 }
 
 bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
@@ -108,75 +115,77 @@ bool CloudSegmenter::segment(const sensor_msgs::PointCloud2& cloud, const std::v
   auto points = std::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   if (bad.empty()) {
     pcl::fromROSMsg(cloud, *points);
-    bad = checkPoints(*points, indices);
+    bad = checkCoordinates(*points, indices);
   }
   if (!bad.empty()) {
     if (why)
       *why = bad;
     return false;
   }
+  setSensorOrigin(*points, indices, origin);
+  // A new segmentation of the new cloud: a cloud the library refuses leaves the kept one (and
+  // its analysis) as it was.
+  std::unique_ptr<Segmentation> next = newSegmentation(seg_->getParameters());
+  next->setInputCloud(points);
+  if (indices)
+    next->setIndices(std::make_shared<pcl::Indices>(indices->begin(), indices->end()));
+  const std::size_t started = analyses_started_;
+  std::vector<pcl::PointIndices> segments;
+  if (!extract(*next, segments, why))
+    return false;
+  // A kNN graph of k needs k + 1 distinct points; fewer is a crop gone wrong, not an object.
+  if (const pcl_ncut_seg::Warning* few = status_.find(pcl_ncut_seg::WarningCode::FewPoints)) {
+    if (why)
+      *why = "fewer than k + 1 = " + std::to_string(next->getNumberOfNeighbours() + 1) +
+             " distinct finite points" + (indices ? " within the indices" : "") + ": " +
+             few->message;
+    return false;
+  }
+  seg_ = std::move(next);
+  segments_ = std::move(segments);
+  cloud_ = points;
+  header_ = cloud.header;
+  origin_ = origin;
+  recordStats(started);
+  return true;
+}
+
+void CloudSegmenter::setSensorOrigin(pcl::PointCloud<pcl::PointXYZ>& points,
+                                     const std::vector<int>* indices, const SensorOrigin& origin) {
   if (origin.source == SensorOrigin::Source::Tf) {
-    points->sensor_origin_ =
+    points.sensor_origin_ =
         Eigen::Vector4f(static_cast<float>(origin.xyz[0]), static_cast<float>(origin.xyz[1]),
                         static_cast<float>(origin.xyz[2]), 0.0f);
   } else if (origin.source == SensorOrigin::Source::Points) {
     // An origin among the points is no sensor: the library reads the position off them.
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     std::size_t finite = 0;
-    const std::size_t n = indices ? indices->size() : points->size();
+    const std::size_t n = indices ? indices->size() : points.size();
     for (std::size_t j = 0; j < n; ++j) {
-      const pcl::PointXYZ& p = (*points)[indices ? (*indices)[j] : j];
-      if (pcl::isFinite(p)) {
-        sum += p.getVector3fMap().cast<double>();
+      const std::size_t i = indices ? static_cast<std::size_t>((*indices)[j]) : j;
+      if (i < points.size() && pcl::isFinite(points[i])) { // (the library refuses a bad index)
+        sum += points[i].getVector3fMap().cast<double>();
         ++finite;
       }
     }
-    points->sensor_origin_.head<3>() = (sum / static_cast<double>(finite)).cast<float>();
+    if (finite > 0)
+      points.sensor_origin_.head<3>() = (sum / static_cast<double>(finite)).cast<float>();
   }
-  cloud_ = points;
-  header_ = cloud.header;
-  origin_ = origin;
-  seg_.setInputCloud(cloud_);
-  if (indices)
-    seg_.setIndices(std::make_shared<pcl::Indices>(indices->begin(), indices->end()));
-  else
-    seg_.setIndices(pcl::IndicesPtr());
-  return run(why);
 }
 
-std::string CloudSegmenter::checkPoints(const pcl::PointCloud<pcl::PointXYZ>& points,
-                                        const std::vector<int>* indices) const {
-  if (indices)
-    for (int i : *indices)
-      if (i < 0 || static_cast<std::size_t>(i) >= points.size())
-        return "index " + std::to_string(i) + " is outside the cloud of " +
-               std::to_string(points.size()) + " points";
-  // A kNN graph of k needs k + 1 distinct points; fewer is a crop gone wrong, not an object.
-  const std::size_t needed = static_cast<std::size_t>(seg_.getParameters().graph.k) + 1;
-  std::vector<Eigen::Vector3f> distinct; // the first `needed` of them
-  std::size_t finite = 0;
+std::string CloudSegmenter::checkCoordinates(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                             const std::vector<int>* indices) {
   const std::size_t n = indices ? indices->size() : points.size();
   for (std::size_t j = 0; j < n; ++j) {
     const std::size_t i = indices ? static_cast<std::size_t>((*indices)[j]) : j;
-    if (!pcl::isFinite(points[i]))
+    if (i >= points.size() || !pcl::isFinite(points[i])) // (the library refuses a bad index)
       continue;
-    ++finite;
-    const Eigen::Vector3f p = points[i].getVector3fMap();
-    if (p.cwiseAbs().maxCoeff() > kMaxCoordinate)
+    const float largest = points[i].getVector3fMap().cwiseAbs().maxCoeff();
+    if (largest > kMaxCoordinate)
       return "point " + std::to_string(i) + " has a coordinate of " +
-             pcl_ncut_seg::formatNumber(p.cwiseAbs().maxCoeff()) + ", beyond +-" +
+             pcl_ncut_seg::formatNumber(largest) + ", beyond +-" +
              pcl_ncut_seg::formatNumber(kMaxCoordinate);
-    if (distinct.size() < needed &&
-        std::find(distinct.begin(), distinct.end(), p) == distinct.end())
-      distinct.push_back(p);
   }
-  const char* within = indices ? " within the indices" : "";
-  if (finite == 0)
-    return std::string("the cloud has no finite point") + within;
-  if (distinct.size() < needed)
-    return "the cloud has " + std::to_string(distinct.size()) + " distinct finite point" +
-           (distinct.size() == 1 ? "" : "s") + within + " (of " + std::to_string(finite) +
-           " finite), fewer than k + 1 = " + std::to_string(needed);
   return "";
 }
 
@@ -186,41 +195,49 @@ bool CloudSegmenter::recut(std::string* why) {
       *why = "no cloud has been segmented yet";
     return false;
   }
-  return run(why);
-}
-
-bool CloudSegmenter::run(std::string* why) {
   const std::size_t started = analyses_started_;
-  seg_.extract(segments_);
-  if (segments_.empty()) {
+  if (!extract(*seg_, segments_, why)) {
     cloud_.reset();
-    if (why)
-      *why = "the segmentation found no segment (see PCL's message above)";
     return false;
   }
-  const pcl_ncut_seg::PhaseTimes& t = seg_.getPhaseTimes();
+  recordStats(started);
+  return true;
+}
+
+bool CloudSegmenter::extract(Segmentation& seg, std::vector<pcl::PointIndices>& segments,
+                             std::string* why) {
+  seg.extract(segments);
+  status_ = seg.getStatus();
+  if (status_.ok() && !segments.empty())
+    return true;
+  if (why) // the library's reason
+    *why = status_.ok() ? "the segmentation found no segment" : status_.message;
+  return false;
+}
+
+void CloudSegmenter::recordStats(std::size_t analyses_before) {
+  const pcl_ncut_seg::PhaseTimes& t = seg_->getPhaseTimes();
   stats_.stamp = header_.stamp.toSec();
   stats_.points = cloud_->size();
   stats_.segments = segments_.size();
   stats_.segmented = 0;
   for (const pcl::PointIndices& s : segments_)
     stats_.segmented += s.indices.size();
-  stats_.analysed = analyses_started_ != started;
+  stats_.analysed = analyses_started_ != analyses_before;
   stats_.analyses += stats_.analysed;
   stats_.cuts += 1;
   stats_.analysis_seconds = t.knn + t.centrality + t.supernodes + t.refinement;
   stats_.cut_seconds = t.hierarchy + t.points;
   stats_.origin = origin_;
   viewStats();
-  return true;
 }
 
 void CloudSegmenter::viewStats() {
-  const pcl_ncut_seg::ViewTest view = seg_.getViewTest();
+  const pcl_ncut_seg::ViewTest view = seg_->getViewTest();
   stats_.view = view.view;
   stats_.origin_estimated = view.view && view.origin_estimated;
   // The test's origin is relative to the analysed points' centroid (core/views/view_origin.h).
-  const std::vector<int>& analysed = seg_.getAnalysedIndices();
+  const std::vector<int>& analysed = seg_->getAnalysedIndices();
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   for (int i : analysed)
     centroid += (*cloud_)[i].getVector3fMap().cast<double>();
@@ -253,7 +270,7 @@ void CloudSegmenter::labelledCloud(sensor_msgs::PointCloud2& out) const {
   std::vector<std::uint32_t> label(cloud_->size(), 0), rgb(cloud_->size(), 0);
   for (std::size_t s = 0; s < segments_.size(); ++s) {
     std::uint8_t r, g, b;
-    pcl::SupernodeNCutSegmentation<pcl::PointXYZ>::segmentColor(s, r, g, b);
+    Segmentation::segmentColor(s, r, g, b);
     const std::uint32_t packed = (std::uint32_t(r) << 16) | (std::uint32_t(g) << 8) | b;
     for (int i : segments_[s].indices) {
       label[i] = static_cast<std::uint32_t>(s + 1);

@@ -195,6 +195,7 @@ void SegmentationNodelet::process(const Cloud& cloud, const std::vector<int>* in
                   cloud.header.stamp.toSec(), why.c_str());
     return;
   }
+  logWarnings();
   const SegmentStats& s = segmenter_.stats();
   NODELET_DEBUG("%zu points: %zu segments (analysis %.3f s, cut %.3f s)", s.points, s.segments,
                 s.analysis_seconds, s.cut_seconds);
@@ -219,6 +220,7 @@ void SegmentationNodelet::reconfigure(Config& config, std::uint32_t /*level*/) {
     NODELET_ERROR("dynamic_reconfigure: the last cloud was not re-cut: %s", why.c_str());
     return;
   }
+  logWarnings();
   const SegmentStats& s = segmenter_.stats();
   if (s.analysed)
     NODELET_INFO("re-segmented the last cloud: %zu segments (analysis %.3f s, needed by the new "
@@ -229,6 +231,11 @@ void SegmentationNodelet::reconfigure(Config& config, std::uint32_t /*level*/) {
                  "analysis, %.3f s, was not repeated)",
                  s.segments, s.cut_seconds, s.analysis_seconds);
   publish();
+}
+
+void SegmentationNodelet::logWarnings() {
+  for (const pcl_ncut_seg::Warning& w : segmenter_.status().warnings)
+    NODELET_WARN("%s", w.message.c_str());
 }
 
 void SegmentationNodelet::publish() {

@@ -120,7 +120,7 @@ def bad_kinds(crop, frame):
             PointField("z", 12, f32, 1)], "d2f"), range(len(crop)))]),
         ("wrong row_step", "does not match its layout",
          [(short_rows, frame_indices), (long_rows, frame_indices)]),
-        ("indices out of range", "outside the cloud",
+        ("indices out of range", "out of range for a cloud of",
          [(cloud(crop)[0], list(range(len(crop))) + [len(crop)]),
           (cloud(crop)[0], [-1] + list(range(len(crop))))]),
     ]

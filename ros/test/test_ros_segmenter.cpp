@@ -279,7 +279,10 @@ TEST(RosSegmenter, IndicesRestrictTheSegmentation) {
   EXPECT_EQ(listed, indices.size());
   std::vector<int> outside{0, static_cast<int>(shape.cloud->size())};
   EXPECT_FALSE(seg.segment(toMsg(*shape.cloud), &outside, &why));
-  EXPECT_NE(why.find("outside the cloud"), std::string::npos) << why;
+  const std::string n = std::to_string(shape.cloud->size());
+  EXPECT_NE(why.find("index " + n + " is out of range for a cloud of " + n + " points."),
+            std::string::npos)
+      << why;
 }
 
 TEST(RosSegmenter, BadCloudsAreRejectedAndTheKeptOneStays) {
@@ -329,12 +332,14 @@ TEST(RosSegmenter, DegenerateAndMalformedCloudsSayWhy) {
   pcl::PointCloud<pcl::PointXYZ> few;
   for (int n = 1; n <= 3; ++n) {
     few.push_back((*shape.cloud)[n]);
-    rejects(toMsg(few), "the cloud has " + std::to_string(n) + " distinct finite point");
+    rejects(toMsg(few), "fewer than k + 1 = 11 distinct finite points: only " + std::to_string(n) +
+                            " points: using " + std::to_string(n - 1) +
+                            " neighbours instead of 10.");
   }
   pcl::PointCloud<pcl::PointXYZ> copies; // 10 distinct points: one short of k + 1
   for (int i = 0; i < 500; ++i)
     copies.push_back((*shape.cloud)[i % 10]);
-  rejects(toMsg(copies), "10 distinct finite points (of 500 finite), fewer than k + 1 = 11");
+  rejects(toMsg(copies), "fewer than k + 1 = 11 distinct finite points: only 10 points");
   copies.push_back((*shape.cloud)[10]);
   EXPECT_TRUE(seg.segment(toMsg(copies), nullptr, &why)) << why;
 

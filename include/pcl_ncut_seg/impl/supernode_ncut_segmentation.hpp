@@ -19,6 +19,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
+#include <utility>
 
 template <typename PointT>
 pcl::SupernodeNCutSegmentation<PointT>::SupernodeNCutSegmentation() = default;
@@ -86,15 +88,33 @@ constexpr float kMaxCoordinate = 1e18f;
 } // namespace pcl
 
 template <typename PointT>
-bool pcl::SupernodeNCutSegmentation<PointT>::validIndices(std::vector<int>& valid) const {
+void pcl::SupernodeNCutSegmentation<PointT>::fail(pcl_ncut_seg::StatusCode code,
+                                                  std::string message) {
+  if (console_messages_)
+    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] %s\n", message.c_str());
+  status_.code = code;
+  status_.message = std::move(message);
+}
+
+template <typename PointT>
+void pcl::SupernodeNCutSegmentation<PointT>::warn(pcl_ncut_seg::WarningCode code,
+                                                  std::string message) {
+  if (console_messages_)
+    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] %s\n", message.c_str());
+  status_.warnings.push_back({code, std::move(message)});
+}
+
+template <typename PointT>
+bool pcl::SupernodeNCutSegmentation<PointT>::validIndices(std::vector<int>& valid) {
+  using pcl_ncut_seg::StatusCode;
   const std::size_t cloud_size = input_->size();
   valid.reserve(indices_->size());
   std::size_t too_far = 0;
   for (const auto idx : *indices_) {
     if (idx < 0 || static_cast<std::size_t>(idx) >= cloud_size) {
-      PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] index %d is out of range for a "
-                "cloud of %zu points.\n",
-                static_cast<int>(idx), cloud_size);
+      fail(StatusCode::IndexOutOfRange, "index " + std::to_string(idx) +
+                                            " is out of range for a cloud of " +
+                                            std::to_string(cloud_size) + " points.");
       return false;
     }
     const PointT& p = (*input_)[idx];
@@ -108,23 +128,23 @@ bool pcl::SupernodeNCutSegmentation<PointT>::validIndices(std::vector<int>& vali
       ++too_far;
   }
   if (too_far > 0)
-    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] %zu points with a coordinate beyond "
-             "1e18 are in no segment: their squared distances overflow a float.\n",
-             too_far);
+    warn(pcl_ncut_seg::WarningCode::DistantPoints,
+         std::to_string(too_far) + " points with a coordinate beyond 1e18 are in no segment: "
+                                   "their squared distances overflow a float.");
   if (!std::is_sorted(valid.begin(), valid.end())) // the usual indices are sorted already
     std::sort(valid.begin(), valid.end());
   const std::size_t before = valid.size();
   valid.erase(std::unique(valid.begin(), valid.end()), valid.end());
   if (valid.size() < before)
-    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] %zu repeated indices ignored.\n",
-             before - valid.size());
+    warn(pcl_ncut_seg::WarningCode::RepeatedIndices,
+         std::to_string(before - valid.size()) + " repeated indices ignored.");
   if (valid.size() > std::numeric_limits<std::uint32_t>::max() / 64) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] too many points (%zu).\n", valid.size());
+    fail(StatusCode::TooManyPoints, "too many points (" + std::to_string(valid.size()) + ").");
     return false;
   }
   if (valid.empty()) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] the input has no finite point%s.\n",
-              too_far > 0 ? " within 1e18 of the origin" : "");
+    fail(StatusCode::NoFinitePoint, std::string("the input has no finite point") +
+                                        (too_far > 0 ? " within 1e18 of the origin." : "."));
     return false;
   }
   return true;
@@ -220,13 +240,8 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
   std::vector<int>().swap(valid); // free before the expensive stage, as the map
   map = pcl_ncut_seg::PointSegmenter::VertexMap();
 
-  // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points).
-  const int k_wanted = params_.graph.k;
-  const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(k_wanted), n - 1);
-  if (k < static_cast<std::size_t>(k_wanted))
-    PCL_WARN("[pcl::SupernodeNCutSegmentation::extract] only %zu points: using %zu "
-             "neighbours instead of %d.\n",
-             n, k, k_wanted);
+  // Sec. 4.1: the k nearest neighbours of each point (fewer when there are fewer points, with
+  // a warning from the analysis).
   pcl_ncut_seg::PointSegmenter::NeighbourSearch search;
   if (search_) // else FLANN's kd-tree as pcl::search::KdTree builds it
     search = [this](std::size_t neighbours, int threads, std::uint32_t* knn) {
@@ -240,16 +255,22 @@ template <typename PointT> bool pcl::SupernodeNCutSegmentation<PointT>::analyze(
     };
   times_ = pcl_ncut_seg::PhaseTimes();
   times_.knn = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  segmenter_.analyze(params_, times_, progress_, search, normals);
-  return true;
+  const pcl_ncut_seg::Status analysed =
+      segmenter_.analyze(params_, times_, progress_, search, normals);
+  for (const pcl_ncut_seg::Warning& w : analysed.warnings)
+    warn(w.code, w.message);
+  if (!analysed.ok())
+    fail(analysed.code, analysed.message);
+  return analysed.ok();
 }
 
 template <typename PointT>
 void pcl::SupernodeNCutSegmentation<PointT>::extract(std::vector<pcl::PointIndices>& segments) {
   segments.clear();
   have_result_ = false;
+  status_ = pcl_ncut_seg::Status();
   if (!initCompute()) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::extract] no input cloud.\n");
+    fail(pcl_ncut_seg::StatusCode::NoInput, "no input cloud.");
     return;
   }
   if (segmenter_.analysed() && !segmenter_.serves(params_))

@@ -17,8 +17,9 @@ bool pcl::SupernodeNCutSegmentation<PointT>::update(const pcl_ncut_seg::Paramete
                                                     const char* method) {
   std::string why;
   if (!pcl_ncut_seg::validate(params, &why)) {
-    PCL_ERROR("[pcl::SupernodeNCutSegmentation::%s] %s; keeping the previous value.\n", method,
-              why.c_str());
+    if (console_messages_)
+      PCL_ERROR("[pcl::SupernodeNCutSegmentation::%s] %s; keeping the previous value.\n", method,
+                why.c_str());
     return false;
   }
   if (pcl_ncut_seg::analysisDiffers(params_, params))

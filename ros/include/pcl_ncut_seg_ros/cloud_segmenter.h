@@ -13,6 +13,7 @@
 #include <sensor_msgs/PointCloud2.h>
 
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,19 +55,25 @@ struct SegmentStats {
   std::string yaml() const;
 };
 
+using Segmentation = pcl::SupernodeNCutSegmentation<pcl::PointXYZ>;
+
 class CloudSegmenter {
 public:
   CloudSegmenter();
+  CloudSegmenter(const CloudSegmenter&) = delete; // its segmentation's callback holds this
+  CloudSegmenter& operator=(const CloudSegmenter&) = delete;
 
   /** \brief Take valid parameters (false with why, nothing changed, for invalid ones). A
    * change of the cut stages only keeps the analysis of the kept cloud; see recut(). */
   bool setParameters(const pcl_ncut_seg::Parameters& params, std::string* why);
-  const pcl_ncut_seg::Parameters& parameters() const { return seg_.getParameters(); }
+  const pcl_ncut_seg::Parameters& parameters() const { return seg_->getParameters(); }
 
-  /** \brief Check the cloud (x, y, z as FLOAT32; a layout that matches its data; indices
-   * within it; at least k + 1 distinct finite points, none beyond kMaxCoordinate), then
-   * segment it, restricted to indices if given, as seen from origin. A bad cloud returns false
-   * with why and leaves the kept cloud as it was. */
+  /** \brief Check the message (x, y, z as FLOAT32; a layout that matches its data) and the
+   * coordinates (none beyond kMaxCoordinate), then segment the cloud, restricted to indices if
+   * given, as seen from origin. The library checks the rest (indices within the cloud, a
+   * finite point) and its reason is why; a cloud of fewer than k + 1 distinct finite points
+   * (the library's WarningCode::FewPoints) is refused too. A bad cloud returns false with why
+   * and leaves the kept cloud, and its analysis, as they were. */
   bool segment(const sensor_msgs::PointCloud2& cloud, const std::vector<int>* indices,
                std::string* why, const SensorOrigin& origin = SensorOrigin());
 
@@ -85,21 +92,34 @@ public:
   std::vector<pcl_msgs::PointIndices> segmentIndices() const;
 
   const SegmentStats& stats() const { return stats_; }
-  const pcl::SupernodeNCutSegmentation<pcl::PointXYZ>& segmentation() const { return seg_; }
+  /** \brief The library's status of the last segment() or recut() that reached it: its
+   * warnings (e.g. repeated indices) also when it succeeded. */
+  const pcl_ncut_seg::Status& status() const { return status_; }
+  const Segmentation& segmentation() const { return *seg_; }
 
 private:
-  bool run(std::string* why);
-  /** \brief Why the points (those of indices, if given) cannot be segmented, or "". */
-  std::string checkPoints(const pcl::PointCloud<pcl::PointXYZ>& points,
-                          const std::vector<int>* indices) const;
+  /** \brief A segmentation with these parameters, silent (its status says why), counting
+   * its analyses. */
+  std::unique_ptr<Segmentation> newSegmentation(const pcl_ncut_seg::Parameters& params);
+  /** \brief seg.extract() into segments; false with the library's reason. */
+  bool extract(Segmentation& seg, std::vector<pcl::PointIndices>& segments, std::string* why);
+  /** \brief The sensor's position into points.sensor_origin_, as origin says. */
+  static void setSensorOrigin(pcl::PointCloud<pcl::PointXYZ>& points,
+                              const std::vector<int>* indices, const SensorOrigin& origin);
+  /** \brief Why the points (those of indices, if given) lie too far out, or "". */
+  static std::string checkCoordinates(const pcl::PointCloud<pcl::PointXYZ>& points,
+                                      const std::vector<int>* indices);
+  /** \brief What the last extract() did into stats_. */
+  void recordStats(std::size_t analyses_before);
   /** \brief The last analysis' view test into stats_, its origin in the cloud's frame. */
   void viewStats();
 
-  pcl::SupernodeNCutSegmentation<pcl::PointXYZ> seg_;
+  std::unique_ptr<Segmentation> seg_;         ///< the kept cloud's (never null)
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_; ///< the kept cloud (null before a good one)
   std_msgs::Header header_;                   ///< its header
   SensorOrigin origin_;                       ///< its sensor origin as handed over
   std::vector<pcl::PointIndices> segments_;
+  pcl_ncut_seg::Status status_;
   SegmentStats stats_;
   std::size_t analyses_started_ = 0;
 };

@@ -72,6 +72,8 @@ private:
   void reconfigure(Config& config, std::uint32_t level);
   /** \brief Publish the segmenter's result on ~output and ~stats (mutex_ held). */
   void publish();
+  /** \brief The library's warnings of the last segmentation, as NODELET_WARN (mutex_ held). */
+  void logWarnings();
 
   int max_queue_size_ = 3;
   bool use_indices_ = false;
