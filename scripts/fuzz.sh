@@ -19,7 +19,7 @@ BUILD_DIR="${BUILD_DIR:-build-fuzz}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
 
 corpus() { case "$1" in fuzz_extract) echo test/fuzz/corpus ;; fuzz_read) echo test/fuzz/corpus_read ;; esac; }
-max_len() { case "$1" in fuzz_extract) echo 800 ;; fuzz_read) echo 4096 ;; esac; }
+max_len() { case "$1" in fuzz_extract) echo 800 ;; fuzz_read) echo 8192 ;; esac; }
 
 TARGETS=("$@")
 [ "${#TARGETS[@]}" -gt 0 ] || TARGETS=(fuzz_extract fuzz_read)
