@@ -132,6 +132,8 @@ def run(source, target, parameters=None, *, scheduler=None, workers=None, force=
     """
     source, target = os.path.abspath(source), os.path.abspath(target)
     parameters = dict(parameters or {})
+    if progress is not False:
+        _tqdm()  # before anything is written: a run that cannot show its bar does not start
     resolved = _resolved(parameters)
     inputs = _check_folders(source, target)
     journal = _open_journal(target, resolved, force)
@@ -217,12 +219,19 @@ def _up_to_date(journal, path, stamp, target, name):
         return False
 
 
+def _tqdm():
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        raise BatchError("the progress bar needs tqdm: apt-get install python3-tqdm (Debian 12), "
+                         "or run with --no-progress") from None
+    return tqdm
+
+
 def _bar(progress, total, skipped):
     if progress is False:
         return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="file", dynamic_ncols=True, smoothing=0.1,
+    return _tqdm()(total=total, unit="file", dynamic_ncols=True, smoothing=0.1,
                 disable=None if progress is None else False,
                 desc="segmenting" + (f" ({skipped} up to date)" if skipped else ""))
 

@@ -271,6 +271,25 @@ def test_command_line_errors_are_one_line(tmp_path):
     assert "k must be" in error(str(tmp_path), str(tmp_path / "out"), "-k", "1")
 
 
+def test_without_tqdm_the_command_line_says_so_in_one_line(tmp_path):
+    (tmp_path / "in").mkdir()
+    blocked = ("import sys, runpy; sys.modules['tqdm'] = None; sys.argv[0] = 'batch'; "
+               "runpy.run_module('pcl_ncut_seg.batch', run_name='__main__')")
+
+    def command(*args):
+        return subprocess.run([sys.executable, "-c", blocked, str(tmp_path / "in"),
+                               str(tmp_path / "out"), *args],
+                              capture_output=True, text=True, timeout=TIMEOUT)
+
+    done = command()
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.strip() == ("pcl_ncut_seg.batch: the progress bar needs tqdm: apt-get "
+                                   "install python3-tqdm (Debian 12), or run with --no-progress")
+    assert not (tmp_path / "out").exists()  # nothing written
+    done = command("--no-progress")  # an empty IN: nothing to segment, and no bar needed
+    assert done.returncode == 0, done.stderr
+
+
 @pytest.mark.skipif(not (TOOL and os.path.isdir(SHARED)),
                     reason="needs the tool and ../shared/data")
 def test_the_shared_datas_files_are_the_tools(cluster, tmp_path):
