@@ -48,7 +48,7 @@ mkdir -p "$(dirname "$results")"
   echo "Written by \`scripts/cad_models.sh\` on $(date -u +%Y-%m-%d): each mesh of" \
     "\`../shared/data/models\` sampled with \`pcl_ncut_seg_sample_mesh MODEL.off MODEL.pcd -n $n\`," \
     "then \`pcl_ncut_seg MODEL.pcd MODEL_cad.pcd -cad\` (the defaults otherwise); build" \
-    "$(git -C "$build" describe --always --dirty 2>/dev/null || echo unknown) (the tools in \`$build\`);" \
+    "$("$tool" -version | sed -n 's/.*(build \(.*\))$/\1/p') (the tools in \`$(realpath --relative-to="$here" "$build")\`);" \
     "machine: $(nproc) cores, $(uname -sr). The meshes have no face labels: apart from the meshed" \
     "cube (six faces, tested) the counts are not checked against a truth."
   echo

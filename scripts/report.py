@@ -17,6 +17,9 @@ import platform
 import sys
 from collections import defaultdict
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from results_paths import relative_command  # noqa: E402  (the commands, relative to the repository)
+
 INPUTS = [  # (folder, mode in models.csv, label)
     ("centroids", "auto", "face centroids"),
     ("samples", "auto", "20k area-uniform samples"),
@@ -61,7 +64,8 @@ def read_runs(out):
                 build = os.path.join(run, "build")
                 builds[open(build).read().strip() if os.path.exists(build) else "unknown"].append(
                     run)
-                commands.append(open(os.path.join(run, "command")).read().strip())
+                commands.append(relative_command(
+                    open(os.path.join(run, "command")).read().strip(), out))
                 with open(path, newline="") as f:
                     for row in csv.DictReader(f):
                         model_id = int(row["id"])
@@ -163,7 +167,7 @@ class Scores:
 def header(title, out, build, commands, md):
     md.append(f"# {title}\n")
     md.append(f"Written by `scripts/report.py` on {datetime.date.today()} from the runs in "
-              f"`{out}`; every run's evaluator was build {build} (the build each run recorded). "
+              f"`$OUT` (scripts/report.sh's OUT); every run's evaluator was build {build} (the build each run recorded). "
               f"Machine: {machine()}. The evaluator's commands:\n")
     md.append("```")
     md += commands
@@ -329,7 +333,7 @@ def signed(x, k):
 
 def ablation(s, md, out):
     offs = sorted({k[1] for k in s.runs if k[1].startswith("off-")})
-    md.append(f"From the runs in `{out}`, with fewer draws and views than the report: each stage "
+    md.append(f"From the runs in `$OUT`, with fewer draws and views than the report: each stage "
               "off against the defaults on the same points, on both halves of the dev split "
               "and on the validation split. A stage pays on an input when turning it off makes "
               f"the dev halves and the validation split all worse by at least {NOISE} in 1 - RI "

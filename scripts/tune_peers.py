@@ -250,10 +250,11 @@ def write(out, target, settings_target):
             if os.path.exists(os.path.join(folder, "build")):
                 builds.add(open(os.path.join(folder, "build")).read().strip())
                 if split == "val":
-                    commands.append(open(os.path.join(folder, "command")).read().strip())
+                    commands.append(report.relative_command(
+                        open(os.path.join(folder, "command")).read().strip(), out))
     if len(builds) != 1:
         sys.exit(f"tune_peers.py: the runs come from more than one build: {sorted(builds)}")
-    md.append(f"Written by `scripts/tune_peers.py` from the runs in `{out}`; build "
+    md.append("Written by `scripts/tune_peers.py` from the runs in `$OUT` (its OUT); build "
               f"{builds.pop()} (every run's evaluator); machine: {report.machine()}. "
               "Both peers run PCL's supervoxels (colour importance 0, spatial 1, normal 4), then "
               "LCCP or CPC with the sanity criterion and the smoothness check on (threshold "
