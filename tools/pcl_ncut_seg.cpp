@@ -98,18 +98,6 @@ std::size_t fieldSize(const pcl::PCLPointField& f) {
   return pcl_ncut_seg::files::typeSize(f.datatype) * std::max<std::uint32_t>(f.count, 1);
 }
 
-/** The fields x, y, z of pcl::PointXYZ: the points as read and segmented. */
-std::vector<pcl::PCLPointField> xyzFields() {
-  std::vector<pcl::PCLPointField> fields(3);
-  for (std::uint32_t c = 0; c < 3; ++c) {
-    fields[c].name = std::string(1, static_cast<char>('x' + c));
-    fields[c].offset = 4 * c;
-    fields[c].datatype = pcl::PCLPointField::FLOAT32;
-    fields[c].count = 1;
-  }
-  return fields;
-}
-
 /** The output cloud. By default exactly x y z (float, the points as read) rgb label, whatever
  * the input's types and order of fields; with keep_fields, every field of the input except an
  * old label, then label. rgb is packed into a float as pcl::PointXYZRGB stores it (alpha 0),
@@ -128,7 +116,9 @@ pcl::PCLPointCloud2 makeOutput(const Input& input, const std::vector<std::uint32
     std::size_t from, to, size;
   };
   std::vector<Copy> copies;
-  for (const pcl::PCLPointField& f : keep_fields ? input.blob.fields : xyzFields()) {
+  // x, y, z of pcl::PointXYZ (offsets 0, 4, 8): the points as read and segmented.
+  const std::vector<pcl::PCLPointField> xyz = pcl_ncut_seg::files::xyzCloud(0, 0).fields;
+  for (const pcl::PCLPointField& f : keep_fields ? input.blob.fields : xyz) {
     if (f.name == "label")
       continue;
     pcl::PCLPointField out = f;

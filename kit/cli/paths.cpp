@@ -1,5 +1,7 @@
 #include "cli/paths.h"
 
+#include "files/values.h"
+
 #include "cli/console.h"
 
 #include <algorithm>
@@ -13,14 +15,7 @@ namespace pcl_ncut_seg {
 namespace tool {
 
 std::string extension(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  const std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-    return "";
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
+  return files::extensionOf(path);
 }
 
 std::string baseName(const std::string& path) {

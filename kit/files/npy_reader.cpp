@@ -131,20 +131,7 @@ bool readNpy(const FileBytes& file, pcl::PCLPointCloud2& blob, std::string& erro
   std::vector<std::uint8_t> raw(n * 3 * size);
   if (!file.read(a.data_offset, raw.size(), raw.data(), error))
     return false;
-  for (const char* name : {"x", "y", "z"}) {
-    pcl::PCLPointField f;
-    f.name = name;
-    f.offset = static_cast<std::uint32_t>(4 * blob.fields.size());
-    f.datatype = pcl::PCLPointField::FLOAT32;
-    f.count = 1;
-    blob.fields.push_back(f);
-  }
-  blob.width = static_cast<std::uint32_t>(width);
-  blob.height = static_cast<std::uint32_t>(height);
-  blob.point_step = 12;
-  blob.row_step = 12 * blob.width;
-  blob.is_dense = true;
-  blob.data.resize(n * 12);
+  blob = xyzCloud(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t c = 0; c < 3; ++c) {
       // Fortran order: (h, w, c) at h + H (w + W c); C order: at 3 (h W + w) + c.

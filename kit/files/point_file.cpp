@@ -18,17 +18,6 @@ const char* const kInputFormats = ".pcd, .ply, .npy, .off or .obj";
 
 namespace {
 
-std::string extensionOf(const std::string& path) {
-  const std::size_t slash = path.find_last_of('/');
-  const std::size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-    return "";
-  std::string ext = path.substr(dot);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 /** The field named name of a single value, or null. */
 const pcl::PCLPointField* field(const pcl::PCLPointCloud2& blob, const char* name) {
   for (const pcl::PCLPointField& f : blob.fields)
@@ -88,21 +77,7 @@ bool toPoints(const std::string& path, PointFile& file, std::string& error) {
 
 /** A PCLPointCloud2 with the fields x y z (float) from a flat array. */
 pcl::PCLPointCloud2 xyzBlob(const std::vector<float>& xyz) {
-  pcl::PCLPointCloud2 blob;
-  for (const char* name : {"x", "y", "z"}) {
-    pcl::PCLPointField f;
-    f.name = name;
-    f.offset = static_cast<std::uint32_t>(4 * blob.fields.size());
-    f.datatype = pcl::PCLPointField::FLOAT32;
-    f.count = 1;
-    blob.fields.push_back(f);
-  }
-  blob.width = static_cast<std::uint32_t>(xyz.size() / 3);
-  blob.height = 1;
-  blob.point_step = 12;
-  blob.row_step = 12 * blob.width;
-  blob.is_dense = true;
-  blob.data.resize(xyz.size() * 4);
+  pcl::PCLPointCloud2 blob = xyzCloud(static_cast<std::uint32_t>(xyz.size() / 3), 1);
   std::memcpy(blob.data.data(), xyz.data(), blob.data.size());
   return blob;
 }

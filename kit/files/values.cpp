@@ -2,6 +2,8 @@
 
 #include "files/file_bytes.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstring>
 #include <limits>
@@ -9,6 +11,36 @@
 
 namespace pcl_ncut_seg {
 namespace files {
+
+pcl::PCLPointCloud2 xyzCloud(std::uint32_t width, std::uint32_t height) {
+  pcl::PCLPointCloud2 blob;
+  for (const char* name : {"x", "y", "z"}) {
+    pcl::PCLPointField f;
+    f.name = name;
+    f.offset = static_cast<std::uint32_t>(4 * blob.fields.size());
+    f.datatype = pcl::PCLPointField::FLOAT32;
+    f.count = 1;
+    blob.fields.push_back(f);
+  }
+  blob.width = width;
+  blob.height = height;
+  blob.point_step = 12;
+  blob.row_step = 12 * width;
+  blob.is_dense = true;
+  blob.data.resize(std::size_t(width) * height * 12);
+  return blob;
+}
+
+std::string extensionOf(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+    return "";
+  std::string ext = path.substr(dot);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 std::size_t typeSize(std::uint8_t datatype) {
   switch (datatype) {

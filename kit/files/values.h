@@ -4,6 +4,7 @@
  */
 #pragma once
 
+#include <pcl/PCLPointCloud2.h>
 #include <pcl/PCLPointField.h>
 
 #include <cstddef>
@@ -13,6 +14,13 @@
 
 namespace pcl_ncut_seg {
 namespace files {
+
+/** \brief A cloud of width x height points of the fields x y z (FLOAT32, 12 bytes a point, as
+ * pcl::PointXYZ's without its padding), its data zeros. */
+pcl::PCLPointCloud2 xyzCloud(std::uint32_t width, std::uint32_t height);
+
+/** \brief The extension of a file name, lower case with its dot (".pcd"); "" for none. */
+std::string extensionOf(const std::string& path);
 
 /** \brief The size in bytes of a PCL field type (INT8 ... FLOAT64); 0 for none. */
 std::size_t typeSize(std::uint8_t datatype);
