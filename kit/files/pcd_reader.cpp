@@ -274,11 +274,14 @@ bool readCompressed(const FileBytes& file, const Header& h, pcl::PCLPointCloud2&
             std::to_string(size);
     return false;
   }
-  std::vector<char> in(static_cast<std::size_t>(compressed));
-  if (!file.read(h.data_offset + sizeof sizes, in.size(), in.data(), error)) {
+  const std::uint64_t start = h.data_offset + sizeof sizes;
+  if (compressed > file.size() - std::min(file.size(), start)) { // before it is allocated
     error = "the compressed block of " + std::to_string(compressed) + " bytes is cut short";
     return false;
   }
+  std::vector<char> in(static_cast<std::size_t>(compressed));
+  if (!file.read(start, in.size(), in.data(), error))
+    return false;
   std::vector<std::uint8_t> raw(static_cast<std::size_t>(size));
   if (size > 0 && pcl::lzfDecompress(in.data(), static_cast<unsigned>(compressed), raw.data(),
                                      static_cast<unsigned>(size)) != size) {
