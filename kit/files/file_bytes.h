@@ -34,6 +34,8 @@ public:
                 std::uint64_t max_bytes = UINT64_MAX) const;
 
 private:
+  bool mapCopy(std::uint64_t offset, std::size_t n, char* dst) const;
+
   int fd_ = -1;
   std::uint64_t size_ = 0;
 };

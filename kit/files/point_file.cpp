@@ -53,12 +53,19 @@ bool toPoints(const std::string& path, PointFile& file, std::string& error) {
   cloud.width = file.blob.width;
   cloud.height = file.blob.height;
   std::size_t finite = 0;
+  const std::uint8_t* data = file.blob.data.data();
+  const std::size_t step = file.blob.point_step;
+  const bool floats = xyz[0]->datatype == pcl::PCLPointField::FLOAT32 &&
+                      xyz[1]->datatype == pcl::PCLPointField::FLOAT32 &&
+                      xyz[2]->datatype == pcl::PCLPointField::FLOAT32;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* point = file.blob.data.data() + i * file.blob.point_step;
+    const std::uint8_t* point = data + i * step;
     pcl::PointXYZ& p = cloud[i];
-    p.x = valueAsFloat(point + xyz[0]->offset, xyz[0]->datatype);
-    p.y = valueAsFloat(point + xyz[1]->offset, xyz[1]->datatype);
-    p.z = valueAsFloat(point + xyz[2]->offset, xyz[2]->datatype);
+    for (int c = 0; c < 3; ++c) // the usual float fields copied, any other type converted
+      if (floats)
+        std::memcpy(&p.data[c], point + xyz[c]->offset, 4);
+      else
+        p.data[c] = valueAsFloat(point + xyz[c]->offset, xyz[c]->datatype);
     finite += std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
   }
   if (finite == 0) {
