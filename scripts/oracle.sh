@@ -32,6 +32,7 @@ done
 [ -x "$EVAL" ] || { echo "oracle.sh: no evaluator at $EVAL (build it first)" >&2; exit 1; }
 
 rel() { realpath -m --relative-to="$ROOT" "$1"; }
+# shellcheck disable=SC2054  # the methods are one comma-separated word
 FLAGS=(-quiet -methods ours,human,finest,oracle,kmeans_oracle -modes auto
   -oracle_segments "$ORACLE_SEGMENTS")
 
