@@ -14,10 +14,18 @@ using namespace pcl_ncut_seg::tool;
 
 const std::vector<std::string> kAllMethods = {"ours", "whole",   "lccp", "cpc",
                                               "one",  "octants", "human"};
+const std::vector<std::string> kFinestMethods = {"finest", "oracle", "kmeans_oracle"};
 const std::vector<std::string> kAllModes = {"auto", "given"};
 const std::vector<std::string> kViewForms = {"view", "crop", "voxel", "laser"};
 
 namespace {
+
+/** Every word -methods takes: the default methods and those of the finest level. */
+std::vector<std::string> methodWords() {
+  std::vector<std::string> words = kAllMethods;
+  words.insert(words.end(), kFinestMethods.begin(), kFinestMethods.end());
+  return words;
+}
 
 std::string numberText(double v) {
   std::ostringstream s;
@@ -86,8 +94,12 @@ std::vector<Flag> runFlags() {
   std::vector<Flag> rows = {
       textFlag("-methods", "LIST",
                "of ours,whole,lccp,cpc,one,octants,human (whole: with -views, 'ours whole', ours "
-               "on the whole object scored on the faces each view sees)",
-               "all"),
+               "on the whole object scored on the faces each view sees), and, only when named, "
+               "the finest level's diagnostic: finest (ours asked for -oracle_segments parts), "
+               "oracle (finest's segments each merged into the person's segment it overlaps "
+               "most, per person: it READS THE PEOPLE'S ANSWERS, a bound, not a method) and "
+               "kmeans_oracle (the same merge of k-means of the points with finest's count)",
+               "all but finest,oracle,kmeans_oracle"),
       textFlag("-modes", "LIST",
                "of auto,given: the segmenter chooses the number of segments, or gets "
                "nSeg-ByModel.txt's",
@@ -97,10 +109,14 @@ std::vector<Flag> runFlags() {
                "NCut thresholds for 'ours' in auto mode, each its own row (a sweep of "
                "-threshold that reuses each model's expensive stage)",
                "-threshold"),
+      intFlag("-oracle_segments", "N",
+              "the finest level of finest, oracle and kmeans_oracle: ours asked for N parts "
+              "(the hierarchy stops sooner where it has nothing left to split)",
+              "30", 1, 10000),
   };
   rows[0].check = [](const std::string& t, std::string* why) {
     std::vector<std::string> items;
-    return parseWords(t, kAllMethods, items, why);
+    return parseWords(t, methodWords(), items, why);
   };
   rows[1].check = [](const std::string& t, std::string* why) {
     std::vector<std::string> items;
@@ -388,7 +404,7 @@ Options readOptions(const Flags& flags) {
   o.out_dir = flags.files[1];
   std::string why;
   if (flags.has("-methods"))
-    parseWords(flags.text("-methods"), kAllMethods, o.methods, &why);
+    parseWords(flags.text("-methods"), methodWords(), o.methods, &why);
   if (flags.has("-modes"))
     parseWords(flags.text("-modes"), kAllModes, o.modes, &why);
   if (flags.has("-ids"))
@@ -397,6 +413,12 @@ Options readOptions(const Flags& flags) {
     parseNumbers(flags.text("-thresholds"), 0, 1e308, o.thresholds, &why);
   o.sampling = readSampling(flags);
   o.quiet = flags.has("-quiet");
+  if (flags.has("-oracle_segments"))
+    o.oracle_segments = static_cast<int>(flags.integer("-oracle_segments"));
+  if (flags.has("-oracle_segments") && !o.hasFinest())
+    throw Failure("-oracle_segments needs -methods with finest, oracle or kmeans_oracle");
+  if (flags.has("-views") && o.hasFinest())
+    throw Failure("finest, oracle and kmeans_oracle score whole objects; they take no -views");
   readViewOptions(flags, o);
   readPeerOptions(flags, o);
   return o;

@@ -27,6 +27,10 @@ struct Failure : std::runtime_error {
 
 /** The methods and the modes of -methods and -modes. */
 extern const std::vector<std::string> kAllMethods;
+/** The methods of the finest level, run only when -methods names them (issue 63's diagnostic):
+ * "finest" (the cut asked for -oracle_segments parts, scored as it is), "oracle" and
+ * "kmeans_oracle" (eval_oracle.h: they read the people's answers). */
+extern const std::vector<std::string> kFinestMethods;
 extern const std::vector<std::string> kAllModes;
 /** The forms of a view of -view_forms, as their modes are called in the reports. */
 extern const std::vector<std::string> kViewForms;
@@ -45,7 +49,8 @@ struct Options {
   std::vector<double> thresholds; ///< auto mode; empty: the parameters' threshold
   SamplingOptions sampling;       ///< the points of each model; default: the face centroids
   bool quiet = false;
-  int views = 0; ///< depth-camera views per model; 0: the whole objects
+  int oracle_segments = 30; ///< the finest level: the cut asked for this many parts
+  int views = 0;            ///< depth-camera views per model; 0: the whole objects
   /// How each view reaches the segmenters (-view_forms): modes "view" (the organized frame),
   /// "crop", "voxel", "laser" (eval_views.h).
   std::vector<std::string> view_forms = {"view"};
@@ -61,6 +66,13 @@ struct Options {
 
   bool has(const std::string& method) const {
     return std::find(methods.begin(), methods.end(), method) != methods.end();
+  }
+  /** Whether a method of the finest level (kFinestMethods) is to run. */
+  bool hasFinest() const {
+    for (const auto& m : kFinestMethods)
+      if (has(m))
+        return true;
+    return false;
   }
   bool hasMode(const std::string& mode) const {
     return std::find(modes.begin(), modes.end(), mode) != modes.end();

@@ -1,4 +1,5 @@
 #include "eval_report.h"
+#include "eval_oracle.h"
 
 #include <algorithm>
 #include <iomanip>
@@ -162,6 +163,15 @@ void categoryTable(const Report& report, const Means& all, const std::string& mo
   }
 }
 
+/** Whether an oracle's rows are in the report: then every file and summary says it read the
+ * people's answers. */
+bool hasOracle(const Report& report) {
+  for (const Row& r : report.rows)
+    if (isOracleMethod(r.method))
+      return true;
+  return false;
+}
+
 } // namespace
 
 std::string modelsCsv(const Report& report) {
@@ -203,6 +213,8 @@ std::string tablesMarkdown(const Report& report) {
   const Means all = means(report);
   std::ostringstream md;
   md << "<!-- written by pcl_ncut_seg_eval -->\n";
+  if (hasOracle(report))
+    md << "\n**Diagnostic.** " << kOracleNote << "\n";
   for (const auto& mode : report.modes) {
     overallTable(report, all, mode, md);
     for (int k = 0; k < (isViewMode(mode) ? 8 : 6); ++k)
@@ -214,6 +226,8 @@ std::string tablesMarkdown(const Report& report) {
 std::string summary(const Report& report) {
   const Means all = means(report);
   std::ostringstream out;
+  if (hasOracle(report))
+    out << kOracleNote << "\n";
   for (const auto& mode : report.modes)
     for (const auto& method : methods(report)) {
       const auto it = all.find({mode, method, "Overall"});

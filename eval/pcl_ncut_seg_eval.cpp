@@ -13,6 +13,7 @@
  */
 #include "eval_model.h"
 #include "eval_options.h"
+#include "eval_oracle.h"
 #include "eval_report.h"
 #include "eval_sampling.h"
 #include "eval_spread.h"
@@ -30,6 +31,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -53,6 +55,7 @@ namespace {
 using pcl_ncut_seg::eval::againstHumans;
 using pcl_ncut_seg::eval::countSegments;
 using pcl_ncut_seg::eval::fixed;
+using pcl_ncut_seg::eval::isOracleMethod;
 using pcl_ncut_seg::eval::Model;
 using pcl_ncut_seg::eval::Report;
 using pcl_ncut_seg::eval::Row;
@@ -222,17 +225,52 @@ std::vector<OursSetting> oursSettings(const Options& opt) {
   return settings;
 }
 
+/** A method of the finest level's diagnostic, in both modes: "finest" scored as it is, an
+ * oracle merged onto each person first (eval_oracle.h). Not kept for the spread. */
+void addFinestRow(const Options& opt, const Model& m, const Draw& d, const std::string& method,
+                  const std::vector<int>& point_labels, double segments, double seconds,
+                  Report& report) {
+  const std::vector<int> faces = d.faces(point_labels);
+  Row r = score(m, method, faces, seconds, d.index);
+  if (isOracleMethod(method))
+    r.scores = pcl_ncut_seg::eval::oracleAgainstHumans(faces, m.humans, m.area);
+  r.segments = segments; // the finest level's (or k-means') count, before any merge
+  addBothModes(opt, r, report);
+}
+
+/** The finest level (ours asked for -oracle_segments parts, on the analysis seg holds or
+ * makes), scored as it is and as the oracle; k-means with its count per model, as the
+ * control. The oracles read the people's answers: a diagnostic, no method. */
+void scoreFinest(const Model& m, const Draw& d, const Options& opt, Segmenter& seg,
+                 Report& report) {
+  pcl_ncut_seg::Parameters finest = opt.params;
+  finest.stopping.rule = pcl_ncut_seg::StoppingRule::Count;
+  finest.stopping.segments = opt.oracle_segments;
+  configure(seg, finest);
+  std::vector<pcl::PointIndices> segments;
+  auto start = std::chrono::steady_clock::now();
+  seg.extract(segments);
+  const double secs = secondsSince(start);
+  const std::vector<int> labels = segmentsToLabels(segments, d.points());
+  const double count = static_cast<double>(countSegments(labels));
+  if (opt.has("finest"))
+    addFinestRow(opt, m, d, "finest", labels, count, secs, report);
+  if (opt.has("oracle"))
+    addFinestRow(opt, m, d, "oracle", labels, count, secs, report);
+  if (!opt.has("kmeans_oracle"))
+    return;
+  start = std::chrono::steady_clock::now(); // k-means with the count of finest, seeded
+  const std::uint64_t seed = 1000003ull * static_cast<std::uint64_t>(m.id) + d.index;
+  const std::vector<int> kmeans = pcl_ncut_seg::eval::kmeansLabels(
+      d.cloud.xyz, std::max<std::size_t>(segments.size(), 1), seed);
+  addFinestRow(opt, m, d, "kmeans_oracle", kmeans, static_cast<double>(countSegments(kmeans)),
+               secondsSince(start), report);
+}
+
 /** 'ours' on a model: a row per auto setting (the first extract() runs both stages, the later
  * ones reuse the analysis), and the given-count row. */
-void scoreOurs(const Model& m, const Draw& d, const Options& opt,
-               const std::vector<OursSetting>& settings, Report& report) {
-  const std::vector<float>& xyz = d.cloud.xyz;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(d.points());
-  for (std::size_t i = 0; i < d.points(); ++i)
-    (*cloud)[i] = pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-  Segmenter seg;
-  seg.setInputCloud(cloud);
+void scoreOursRows(const Model& m, const Draw& d, const Options& opt,
+                   const std::vector<OursSetting>& settings, Segmenter& seg, Report& report) {
   std::vector<pcl::PointIndices> segments;
   double analysis_seconds = -1;
   for (std::size_t t = 0; t < settings.size() && (opt.hasMode("auto") || t == 0); ++t) {
@@ -260,6 +298,23 @@ void scoreOurs(const Model& m, const Draw& d, const Options& opt,
     report.rows.push_back(scoreDraw(m, d, "ours", "given", segmentsToLabels(segments, d.points()),
                                     analysis_seconds + secondsSince(start)));
   }
+}
+
+/** 'ours' (scoreOursRows), then the finest level's rows on the same analysis (scoreFinest:
+ * their time is the cut's alone when ours ran first). */
+void scoreOurs(const Model& m, const Draw& d, const Options& opt,
+               const std::vector<OursSetting>& settings, Report& report) {
+  const std::vector<float>& xyz = d.cloud.xyz;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(d.points());
+  for (std::size_t i = 0; i < d.points(); ++i)
+    (*cloud)[i] = pcl::PointXYZ(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  Segmenter seg;
+  seg.setInputCloud(cloud);
+  if (opt.has("ours"))
+    scoreOursRows(m, d, opt, settings, seg, report);
+  if (opt.hasFinest())
+    scoreFinest(m, d, opt, seg, report);
 }
 
 /** PCL's LCCP and CPC on a model, with the mesh's outward normals to orient theirs by (or to
@@ -364,7 +419,7 @@ void scoreModel(const Model& m, const Options& opt, const std::vector<OursSettin
   DrawLabels labels;
   for (int index = 0; index < opt.sampling.draws; ++index) {
     const Draw d = makeDraw(m, opt, index, labels);
-    if (opt.has("ours"))
+    if (opt.has("ours") || opt.hasFinest())
       scoreOurs(m, d, opt, settings, report);
     scorePeers(m, d, opt, report);
     scoreBaselines(m, d, opt, report);

@@ -109,6 +109,36 @@ TEST_F(EvalTool, RunsEveryMethodOnAModel) {
       EXPECT_EQ(rows.count("\"" + std::string(method) + "\"," + mode), 1u) << method << mode;
 }
 
+TEST_F(EvalTool, RunsTheFinestLevelsOraclesOnlyWhenNamedAndSaysTheyReadThePeople) {
+  const std::string psb = (dir_ / "psb").string(), out = (dir_ / "out").string();
+  ASSERT_EQ(run(psb + " " + out + " -quiet -methods one"), 0) << stderrText();
+  EXPECT_EQ(models().size(), 2u); // one, in both modes
+  ASSERT_EQ(run(psb + " " + out + " -methods human,finest,oracle,kmeans_oracle -modes auto " +
+                "-oracle_segments 4"),
+            0)
+      << stderrText();
+  const auto rows = models();
+  ASSERT_EQ(rows.size(), 4u);
+  for (const char* method : {"finest", "oracle", "kmeans_oracle"}) {
+    const auto& r = rows.at("\"" + std::string(method) + "\",auto");
+    for (int col = 7; col <= 12; ++col) {
+      EXPECT_GE(std::stod(r[col]), 0.0) << method << col;
+      EXPECT_LE(std::stod(r[col]), 1.0) << method << col;
+    }
+    EXPECT_GE(std::stod(r[5]), 1.0);
+    EXPECT_LE(std::stod(r[5]), 4.0);
+  }
+  // The control has the finest level's count; the oracle is the finest level merged.
+  EXPECT_EQ(rows.at("\"kmeans_oracle\",auto")[5], rows.at("\"finest\",auto")[5]);
+  EXPECT_EQ(rows.at("\"oracle\",auto")[5], rows.at("\"finest\",auto")[5]);
+  std::ifstream tables(dir_ / "out" / "tables.md"), out_text(dir_ / "stdout.txt");
+  std::stringstream t, o;
+  t << tables.rdbuf();
+  o << out_text.rdbuf();
+  EXPECT_NE(t.str().find("READ THE PEOPLE'S SEGMENTATIONS"), std::string::npos);
+  EXPECT_NE(o.str().find("READ THE PEOPLE'S SEGMENTATIONS"), std::string::npos);
+}
+
 TEST_F(EvalTool, WritesTheBuildOfItsBinaryBesideTheReports) {
   ASSERT_EQ(run("-version"), 0);
   std::ifstream version_out(dir_ / "stdout.txt");
@@ -252,7 +282,11 @@ TEST_F(EvalTool, FailsCleanlyWithoutWritingAnything) {
                                   psb + " " + out + " -samples 10 -draws 0",
                                   psb + " " + out + " -samples 10 -density_ratio 0.5",
                                   psb + " " + out + " -samples 10 -noise -1",
-                                  psb + " " + out + " -samples x"}) {
+                                  psb + " " + out + " -samples x",
+                                  psb + " " + out + " -methods oracle,bogus",
+                                  psb + " " + out + " -oracle_segments 5",
+                                  psb + " " + out + " -methods oracle -oracle_segments 0",
+                                  psb + " " + out + " -methods kmeans_oracle -views 1"}) {
     EXPECT_EQ(run(args), 1) << args;
     const std::string err = stderrText();
     EXPECT_FALSE(err.empty()) << args;
