@@ -69,6 +69,10 @@ void SegmentationNodelet::onInit() {
     pub_output_ = advertise<Cloud>(*pnh_, "output", max_queue_size_);
   pub_stats_ = pnh_->advertise<std_msgs::String>("stats", 1, true);
 
+  // The server publishes the parameter server's values as it starts: put the values taken
+  // there first (a rejected one is the kept default), or a client that connects before
+  // updateConfig() below sees the rejected value clamped to its range.
+  toConfig(segmenter_.parameters()).__toServer__(*pnh_);
   reconfigure_server_ =
       std::make_unique<dynamic_reconfigure::Server<Config>>(reconfigure_mutex_, *pnh_);
   reconfigure_server_->setCallback(boost::bind(&SegmentationNodelet::reconfigure, this,
