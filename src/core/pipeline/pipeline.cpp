@@ -215,7 +215,7 @@ Analyses analyze(PointSet points, const Parameters& params, PhaseTimes& times,
   const std::vector<std::uint32_t> rank = centralRanks(points.xyz.data(), n, component);
   const CutNeeds needs = cutNeeds(params);
   const bool keep_xyz = params.cad.enabled || needs.concavity || needs.crease || needs.rim ||
-                        params.refinement.crease_split.has_value();
+                        needs.thickness || params.refinement.crease_split.has_value();
   if (!keep_xyz)
     std::vector<float>().swap(points.xyz);
   times.knn += clock.lap();
