@@ -109,12 +109,13 @@ enum class Settle {
  * BucketDijkstra's; double where a band's width is compared with them).
  *
  * Not Boost.Graph's Dijkstra (over a compressed_sparse_row_graph, from a range of sources):
- * pcl_ncut_seg_bench_geodesics measures it on the searches it can express, at 181k points
- * (fandisk, block): its 4-ary heap is as fast or faster, but building its graph from the
- * CsrGraph makes it 5-10 ms slower than this one for ridgeDistance() and no faster for the
- * nearest region. And it cannot express the rest cleanly: its heap breaks ties by its own
- * order, not by the lowest id (the bands sum and stop in the order settled), a settled vertex
- * cannot be queued again when a lower owner ties, and a stop is an exception from a visitor.
+ * pcl_ncut_seg_bench_geodesics times it on the two searches it can express, at 181k points
+ * (fandisk, block, hand-fine): its search is as fast as this one from the ridges and faster
+ * from the regions' many points, but building its graph from the CsrGraph (7-9 ms) leaves it
+ * 5-10 ms slower for ridgeDistance() and no faster for the nearest region. It cannot express
+ * the rest cleanly: its heap orders equal distances its own way, not by the lowest id (the
+ * bands sum and stop in the order settled), a settled vertex cannot be queued again when a
+ * lower owner ties with it, and a stop is an exception thrown from a visitor.
  * \param[in] sources    vertices queued first, in this order, at their dist (finite)
  * \param[in,out] dist   per vertex: the sources' start distances, +infinity where the search is
  *                       to reach; filled in
