@@ -61,8 +61,9 @@ std::vector<Centrality> computeCentralities(const CsrGraph& graph, std::size_t n
                                             const ProgressFn& progress = {},
                                             std::size_t num_starts = 1);
 
-/** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra (reference search).
- * Unreachable vertices get +infinity. */
+/** \brief Single-source shortest path lengths with Boost.Graph's Dijkstra: the reference the
+ * tests and benchmarks check the hand-written searches (core/graph/shortest_paths.h) against;
+ * no stage calls it. Unreachable vertices get +infinity. */
 std::vector<float> geodesicDistances(const CsrGraph& graph, std::uint32_t source);
 
 } // namespace pcl_ncut_seg

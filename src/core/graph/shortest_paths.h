@@ -1,5 +1,10 @@
 /*
- * pcl_ncut_seg: fast shortest paths over the kNN graph for the geodesic distances of Sec. 4.1.
+ * pcl_ncut_seg: the shortest paths over the kNN graph, hand-written; every geodesic distance the
+ * library computes comes from here. BucketDijkstra is eq. (1)'s hot path (centrality/);
+ * multiSourceDijkstra() is the exact search of the other stages: ridgeDistance() and
+ * splitAtRidges() (cad/), the bands of rim_merge (views/) and of boundary_refinement (cut/).
+ * Boost.Graph's Dijkstra runs only as the tests' reference (geodesicDistances(), checked against
+ * in test/test_shortest_paths.cpp).
  */
 #pragma once
 
@@ -102,6 +107,15 @@ enum class Settle {
  * distance): the order of settling, and so any sum taken in it, is reproducible. Distances are
  * summed in Dist (float: the least solution of d(v) = min_u fl(d(u) + w(u, v)), the same as
  * BucketDijkstra's; double where a band's width is compared with them).
+ *
+ * Not Boost.Graph's Dijkstra (over a compressed_sparse_row_graph, from a range of sources):
+ * pcl_ncut_seg_bench_geodesics times it on the two searches it can express, at 181k points
+ * (fandisk, block, hand-fine): its search is as fast as this one from the ridges and faster
+ * from the regions' many points, but building its graph from the CsrGraph (7-9 ms) leaves it
+ * 5-10 ms slower for ridgeDistance() and no faster for the nearest region. It cannot express
+ * the rest cleanly: its heap orders equal distances its own way, not by the lowest id (the
+ * bands sum and stop in the order settled), a settled vertex cannot be queued again when a
+ * lower owner ties with it, and a stop is an exception thrown from a visitor.
  * \param[in] sources    vertices queued first, in this order, at their dist (finite)
  * \param[in,out] dist   per vertex: the sources' start distances, +infinity where the search is
  *                       to reach; filled in
