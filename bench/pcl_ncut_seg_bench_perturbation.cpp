@@ -1,8 +1,8 @@
 /*
  * pcl_ncut_seg_bench_perturbation: how far noise and small displacements of the points move the
- * segmentation, for two known limitations (README and docs/cad.md, "Known limitations") whose
- * goals are not reached yet. The tests assert what holds on these cases; this program prints
- * the figures that are still short of their goal. It is not a test.
+ * segmentation, for two known limitations (docs/limitations.md; docs/cad.md, "Known
+ * limitations") whose goals are not reached yet. The tests assert what holds on these cases;
+ * this program prints the figures that are still short of their goal. It is not a test.
  *
  *  - CAD mode on the generated parts of test/test_cad.cpp (cube, triangular and hexagonal
  *    prisms, L-shaped block, cylinder), clean and with Gaussian noise of 0.005 and 0.01 per

@@ -11,7 +11,7 @@
  *
  * The limb models of test/test_psb.cpp (hands 181-183, four-legged animals 381-383; --limbs
  * runs only these) get a line of their own: their mean 1 - Rand index against the goal of 0.2,
- * which the default mode does not reach yet (README, "Known limitations"), and that of k-means
+ * which the default mode does not reach yet (docs/limitations.md), and that of k-means
  * on the points with the same counts, the baseline the test holds them to.
  */
 #include <pcl_ncut_seg/supernode_ncut_segmentation.h>

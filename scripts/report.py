@@ -167,7 +167,8 @@ class Scores:
 def header(title, out, build, commands, md):
     md.append(f"# {title}\n")
     md.append(f"Written by `scripts/report.py` on {datetime.date.today()} from the runs in "
-              f"`$OUT` (scripts/report.sh's OUT); every run's evaluator was build {build} (the build each run recorded). "
+              f"`$OUT` (scripts/report.sh's OUT); every run's evaluator was build {build} "
+              "(the build each run recorded). "
               f"Machine: {machine()}. The evaluator's commands:\n")
     md.append("```")
     md += commands

@@ -33,19 +33,32 @@ def relative_command(command, out, root=ROOT):
     return " ".join(words)
 
 
+# What each writer now says $OUT is, after the run folder in its header.
+OUT_NAMED = [
+    (r"(Written by `scripts/report\.py` on \S+ from the runs in `\$OUT`);",
+     r"\1 (scripts/report.sh's OUT);"),
+    (r"(Written by `scripts/tune_peers\.py` from the runs in `\$OUT`);",
+     r"\1 (scripts/tune_peers.sh's OUT);"),
+]
+
+
 def rewrite(path, root):
-    """Rewrite the run folder and the commands of a results file written with absolute paths."""
+    """Rewrite the run folder and the commands of a results file written with absolute paths,
+    and name $OUT in its header as its writer now does."""
     with open(path, encoding="utf-8") as f:
-        text = f.read()
+        original = text = f.read()
     match = re.search(r"[Ff]rom the runs in `(/[^`]+)`", text)
-    if not match:
+    if match:
+        out = match.group(1)
+        lines = text.split("\n")
+        for i, line in enumerate(lines):
+            if line.startswith("/") and " " in line:
+                lines[i] = relative_command(line, out, root)
+        text = "\n".join(lines).replace(f"the runs in `{out}`", "the runs in `$OUT`")
+    for pattern, replacement in OUT_NAMED:
+        text = re.sub(pattern, replacement, text, count=1)
+    if text == original:
         return False
-    out = match.group(1)
-    lines = text.split("\n")
-    for i, line in enumerate(lines):
-        if line.startswith("/") and " " in line:
-            lines[i] = relative_command(line, out, root)
-    text = "\n".join(lines).replace(f"the runs in `{out}`", "the runs in `$OUT`")
     with open(path + ".tmp", "w", encoding="utf-8") as f:
         f.write(text)
     os.replace(path + ".tmp", path)
@@ -56,7 +69,7 @@ def main(argv):
     if len(argv) < 4 or argv[1] != "--root":
         sys.exit("usage: results_paths.py --root OLD_CHECKOUT FILE...")
     for path in argv[3:]:
-        print(f"results_paths.py: {path}: {'rewritten' if rewrite(path, argv[2]) else 'no runs named'}")
+        print(f"results_paths.py: {path}: {'rewritten' if rewrite(path, argv[2]) else 'unchanged'}")
 
 
 if __name__ == "__main__":

@@ -254,7 +254,8 @@ def write(out, target, settings_target):
                         open(os.path.join(folder, "command")).read().strip(), out))
     if len(builds) != 1:
         sys.exit(f"tune_peers.py: the runs come from more than one build: {sorted(builds)}")
-    md.append("Written by `scripts/tune_peers.py` from the runs in `$OUT` (its OUT); build "
+    md.append("Written by `scripts/tune_peers.py` from the runs in `$OUT` "
+              "(scripts/tune_peers.sh's OUT); build "
               f"{builds.pop()} (every run's evaluator); machine: {report.machine()}. "
               "Both peers run PCL's supervoxels (colour importance 0, spatial 1, normal 4), then "
               "LCCP or CPC with the sanity criterion and the smoothness check on (threshold "

@@ -169,7 +169,7 @@ TEST(BoundaryRefinement, OffOrOneSegmentChangesNothing) {
 }
 
 // A dumbbell in two segments: without refinement the supernodes of the two balls meet in the
-// middle of the bar (README, known limitations); the refined boundary must move to a concave
+// middle of the bar (docs/limitations.md); the refined boundary must move to a concave
 // crease where the bar meets a ball, so that the bar is whole in one segment.
 TEST(BoundaryRefinement, DumbbellBoundaryMovesToACrease) {
   int checked = 0;

@@ -131,7 +131,7 @@ TEST(CreaseSplit, SplitsASupernodeAtItsConcaveFold) {
 
 TEST(CreaseSplit, SeparatesPartsThatShareASupernode) {
   // On the generated four-legged animal the tail and head rise into the body without a saddle
-  // (README, known limitations) and share supernodes with it; crease splits cut those apart
+  // (docs/limitations.md) and share supernodes with it; crease splits cut those apart
   // at the concave crease where the parts meet the body.
   double before_sum = 0, after_sum = 0;
   for (std::uint64_t seed : {1, 2, 3}) {

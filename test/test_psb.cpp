@@ -377,7 +377,7 @@ TEST(Psb, LimbCategoriesFollowThePartsBetterThanKMeans) {
     GTEST_SKIP() << "shared data absent: no " << kPsbDir;
   // The goal on these hands and four-legged animals is a mean 1 - Rand index of 0.2 or less.
   // It is not reached: the four-legged animals' heads and tails leak into the body with no
-  // saddle between them (README, "Known limitations"); pcl_ncut_seg_bench_psb --limbs prints
+  // saddle between them (docs/limitations.md); pcl_ncut_seg_bench_psb --limbs prints
   // the mean. What the test checks: the segments follow the parts better than the same number
   // of clusters of the points by position alone (k-means, a segmenter that knows nothing of
   // parts and cuts across fingers and legs wherever they are long). The hands carry that; the

@@ -442,7 +442,7 @@ TEST(Robustness, ModelFarFromTheOrigin) {
   EXPECT_EQ(labels_t, segmentsToLabels(segment(back), back->size()));
   // The rounding is a perturbation of the size of a random jitter of 5e-4, and on generated
   // hands changes the segmentation about as much as such a jitter; the Rand index against the
-  // unmoved hand's can fall short of the goal of 0.99 (README, "Known limitations";
+  // unmoved hand's can fall short of the goal of 0.99 (docs/limitations.md;
   // pcl_ncut_seg_bench_perturbation prints it, and the jitter). What the test checks is what
   // matters on a hand: its palm, four fingers and thumb each keep a segment of their own
   // holding over half of their points, moved and unmoved, with six segments asked for and with
