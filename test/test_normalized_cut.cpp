@@ -116,21 +116,17 @@ TEST(NormalizedCut, BothSidesMustHoldAMemberVertex) {
   EXPECT_NE(in1[2], in1[3]);
 }
 
-TEST(Hierarchy, ThresholdAndNumberOfSegments) {
+TEST(Hierarchy, Threshold) {
   // Three pairs (r_i, m_i), members joined in a chain with one weak link.
   WeightedGraph g;
   g.num_vertices = 6;
   g.edges = {{0, 3, 1}, {1, 4, 1}, {2, 5, 1}, {3, 4, 1}, {4, 5, 0.01}};
   StoppingParams p;
+  p.rule = StoppingRule::Threshold;
   p.threshold = 0.05;
   Hierarchy h = buildHierarchy(g, 3, p);
   ASSERT_EQ(h.leaves().size(), 2u);
   EXPECT_LE(h.nodes[0].ncut, 0.05);
-  p.rule = StoppingRule::Count;
-  p.segments = 3;
-  h = buildHierarchy(g, 3, p);
-  EXPECT_EQ(h.leaves().size(), 3u);
-  p.segments = 10; // more than there are supernodes: stops at one per supernode
-  h = buildHierarchy(g, 3, p);
-  EXPECT_EQ(h.leaves().size(), 3u);
+  p.threshold = 1e9; // every split: one leaf per supernode
+  EXPECT_EQ(buildHierarchy(g, 3, p).leaves().size(), 3u);
 }

@@ -152,12 +152,6 @@ TEST(ShortCut, WeighsEachSplitOfTheHierarchyByItsNeck) {
   p.threshold = 2.0;
   p.neck_bound = 0.25;
   EXPECT_EQ(buildHierarchy(g, 6, p).leaves().size(), 3u);
-  // A given number of segments ignores the rule and measures no neck.
-  p.rule = StoppingRule::Count;
-  p.segments = 4;
-  calls = 0;
-  EXPECT_EQ(buildHierarchy(g, 6, p, neck).leaves().size(), 4u);
-  EXPECT_EQ(calls, 0);
 }
 
 TEST(ShortCut, SettersRejectBadValues) {

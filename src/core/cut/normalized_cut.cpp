@@ -13,9 +13,6 @@
 namespace pcl_ncut_seg {
 
 namespace {
-/// Short-cut rule: NCuts below this count as this (no worth grows without bound).
-constexpr double kNeckFloor = 1e-3;
-
 double ratio(double cut, double volume) {
   if (volume > 0.0)
     return cut / volume;
@@ -331,7 +328,7 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
 
   // Best splits first: the leaf whose bisection has the lowest NCut (at most `cap`).
   std::vector<double> worth; // short-cut rule: per node, its split's worth
-  auto bestFirst = [&](int max_leaves, double cap, bool weigh) {
+  auto bestFirst = [&](int max_leaves, double cap) {
     for (int leaves = 1; leaves < max_leaves; ++leaves) {
       int best = -1;
       for (std::size_t i = 0; i < h.nodes.size(); ++i)
@@ -340,19 +337,15 @@ Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
           best = static_cast<int>(i);
       if (best < 0 || h.nodes[best].ncut > cap)
         break;
-      if (weigh) {
-        const double neck = split_neck ? split_neck(splits[best].v1, splits[best].v2) : 0.0;
-        worth.resize(h.nodes.size(), 0.0);
-        worth[best] =
-            splitWorth(h.nodes[best].ncut, neck, kNeckExponent, params.neck_bound, kNeckFloor);
-      }
+      const double neck = split_neck ? split_neck(splits[best].v1, splits[best].v2) : 0.0;
+      worth.resize(h.nodes.size(), 0.0);
+      worth[best] =
+          splitWorth(h.nodes[best].ncut, neck, kNeckExponent, params.neck_bound, kNeckFloor);
       split(best);
     }
   };
-  if (params.rule == StoppingRule::Count) {
-    bestFirst(params.segments, std::numeric_limits<double>::infinity(), false);
-  } else if (params.rule == StoppingRule::ShortCut) {
-    bestFirst(std::max(params.max_segments, 1), params.threshold, true);
+  if (params.rule == StoppingRule::ShortCut) {
+    bestFirst(std::max(params.max_segments, 1), params.threshold);
     return keptSplits(h, worth); // core/cut/short_cut.h
   } else {
     // Recursive bisection until NCut exceeds the threshold.

@@ -57,9 +57,10 @@ struct Hierarchy {
 using SplitNeckFn =
     std::function<double(const std::vector<std::uint32_t>&, const std::vector<std::uint32_t>&)>;
 
-/** \brief The hierarchy under params.rule. The short-cut rule weighs each split by its neck
- * from `split_neck`; without one, by its NCut alone (every neck counts as 0). The other rules
- * measure no neck. */
+/** \brief The hierarchy top-down under the threshold rule or the short-cut rule (the count rule
+ * is bottom-up: core/cut/part_merge.h; here it reads as the threshold rule). The short-cut rule
+ * weighs each split by its neck from `split_neck`; without one, by its NCut alone (every neck
+ * counts as 0). */
 Hierarchy buildHierarchy(const WeightedGraph& graph, std::size_t num_supernodes,
                          const StoppingParams& params, const SplitNeckFn& split_neck = nullptr);
 

@@ -66,6 +66,9 @@ double splitWorth(double ncut, double neck, double exponent, double bound, doubl
 /// (a half disc: sqrt(2 pi)); a limb a narrower one.
 constexpr double kLimbNeck = 1.7724538509055160273; // sqrt(pi)
 
+/// NCuts below this count as this in splitWorth(): no worth grows without bound.
+constexpr double kNeckFloor = 1e-3;
+
 /// The pipeline's exponent of the neck in splitWorth(): a boundary twice as long per unit of
 /// the smaller side's size must cut eight times cheaper to be worth as much.
 constexpr double kNeckExponent = 3.0;

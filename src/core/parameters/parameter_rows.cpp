@@ -178,7 +178,8 @@ void stoppingRows(Rows& t) {
   t.push_back(choice<StoppingRule>(
       row("stopping", "stopping.rule", S::Stopping, K::Choice, "RULE",
           "threshold: bisect while the best NCut <= -threshold (the paper); short_cut: "
-          "best-first splits across short boundaries; count: -segments parts",
+          "best-first splits across short boundaries; count: the -segments strongest parts, "
+          "merged bottom-up from the supernodes",
           false),
       {"threshold", "short_cut", "count"}, FIELD(stopping.rule)));
   t.push_back(number<double, double>(
@@ -189,8 +190,9 @@ void stoppingRows(Rows& t) {
     // Asking for a number of segments is choosing the count rule.
     ParameterInfo segments = number<int, int>(
         row("segments", "stopping.segments", S::Stopping, K::Integer, "N",
-            "ask for N segments (sets -stopping count); fewer come out when no part can be "
-            "split",
+            "ask for N segments (sets -stopping count): the supernodes merge, weakest "
+            "boundary first, until N are left; fewer come out when there are fewer "
+            "supernodes",
             false),
         atLeast(1), FIELD(stopping.segments));
     const auto set = segments.set;

@@ -2,6 +2,7 @@
 
 #include "core/cad/cad.h"
 #include "core/cut/boundary_refinement.h"
+#include "core/cut/part_merge.h"
 #include "core/cut/short_cut.h"
 #include "core/supernodes/refinement.h"
 #include "core/views/rim_merge.h"
@@ -21,24 +22,44 @@ WeightedGraph similarityStage(const Analysis& a, const SimilarityParams& params)
                              a.thickness.empty() ? nullptr : &a.thickness);
 }
 
+namespace {
+/// The sides of a split of the supernodes: 0 for `side0`'s, 1 for `side1`'s, -1 elsewhere.
+/// Both hold supernode ids, or with `of_gs` vertex ids of G_s (only members m_i = l + i count,
+/// footnote 6).
+std::vector<std::int8_t> sidesOf(std::size_t l, const std::vector<std::uint32_t>& side0,
+                                 const std::vector<std::uint32_t>& side1, bool of_gs) {
+  std::vector<std::int8_t> side(l, -1);
+  for (int t = 0; t < 2; ++t)
+    for (std::uint32_t v : t == 0 ? side0 : side1)
+      if (!of_gs)
+        side[v] = static_cast<std::int8_t>(t);
+      else if (v >= l)
+        side[v - l] = static_cast<std::int8_t>(t);
+  return side;
+}
+} // namespace
+
 Hierarchy hierarchyStage(const Analysis& a, const WeightedGraph& graph,
                          const StoppingParams& params) {
   const std::size_t l = a.supernodes.size();
-  if (params.rule != StoppingRule::ShortCut)
+  if (params.rule == StoppingRule::Threshold)
     return buildHierarchy(graph, l, params);
-  // The short-cut rule measures each split's boundary on the kNN graph (core/cut/short_cut.h),
-  // on a noisy cloud after a vote that takes the noise out of the boundaries.
+  // The short-cut rule and the count rule measure boundaries on the kNN graph
+  // (core/cut/short_cut.h), on a noisy cloud after a vote that takes the noise out of them.
   const NeckMeasure necks(*a.graph, a.supernodes.label, l, a.noise.projected);
+  if (params.rule == StoppingRule::Count) {
+    // The N strongest boundaries of the finest level (core/cut/part_merge.h). The bound shifts
+    // every worth alike: an order needs none.
+    const BoundaryWorthFn worth = [&necks, l](const std::vector<std::uint32_t>& s0,
+                                              const std::vector<std::uint32_t>& s1, double ncut) {
+      const double neck = necks.neck(sidesOf(l, s0, s1, false));
+      return splitWorth(ncut, neck, kNeckExponent, 1.0, kNeckFloor);
+    };
+    return mergeParts(graph, l, worth, params.segments);
+  }
   const SplitNeckFn split_neck = [&necks, l](const std::vector<std::uint32_t>& v1,
                                              const std::vector<std::uint32_t>& v2) {
-    std::vector<std::int8_t> side(l, -1);
-    for (std::uint32_t v : v1)
-      if (v >= l)
-        side[v - l] = 0; // member vertex m_i = l + i stands for supernode i (footnote 6)
-    for (std::uint32_t v : v2)
-      if (v >= l)
-        side[v - l] = 1;
-    return necks.neck(side);
+    return necks.neck(sidesOf(l, v1, v2, true));
   };
   return buildHierarchy(graph, l, params, split_neck);
 }

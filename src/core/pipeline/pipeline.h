@@ -37,7 +37,8 @@
  *                               concavity, thickness, flat_elongation
  *                               (core/cut/supernode_graph.h)
  *   [paper] hierarchy           Sec. 5.2, threshold rule; [ext] stopping=short_cut
- *                               (core/cut/short_cut.h), count
+ *                               (core/cut/short_cut.h), count: bottom-up merges
+ *                               (core/cut/part_merge.h)
  *   [paper] point segments      footnote 6 (labelPoints())
  *   [ext]   boundary_band       point-level boundaries by minimum cuts
  *                               (core/cut/boundary_refinement.h)
