@@ -18,6 +18,17 @@ namespace pcl_ncut_seg_bench {
 /// What a child printed: key=value pairs.
 using Result = std::map<std::string, double>;
 
+/// The key=value pairs of `line`, added to `result`.
+inline void parseFields(const std::string& line, Result& result) {
+  std::istringstream fields(line);
+  std::string field;
+  while (fields >> field) {
+    const auto eq = field.find('=');
+    if (eq != std::string::npos)
+      result[field.substr(0, eq)] = std::strtod(field.c_str() + eq + 1, nullptr);
+  }
+}
+
 /// Run `command` (a child that prints key=value pairs on its output) and parse what it printed;
 /// false when it could not run or failed.
 inline bool runChild(const std::string& command, Result& result) {
@@ -31,13 +42,7 @@ inline bool runChild(const std::string& command, Result& result) {
     line += buffer;
   if (pclose(pipe) != 0)
     return false;
-  std::istringstream fields(line);
-  std::string field;
-  while (fields >> field) {
-    const auto eq = field.find('=');
-    if (eq != std::string::npos)
-      result[field.substr(0, eq)] = std::strtod(field.c_str() + eq + 1, nullptr);
-  }
+  parseFields(line, result);
   return true;
 }
 

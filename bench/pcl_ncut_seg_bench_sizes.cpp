@@ -149,6 +149,67 @@ bool measure(const std::string& self, const std::string& in, const std::string& 
   return ran && result.count("whole") > 0;
 }
 
+std::string g_dir;                     // the temporary directory, removed at exit
+volatile std::sig_atomic_t g_stop = 0; // Ctrl-C: stop after the current child, clean up
+
+/// Parent: run `count` children at once on `in`, each with its own output file, and parse
+/// their lines; false when any failed.
+bool measureAtOnce(const std::string& self, const std::string& in, const std::string& dir,
+                   int count, unsigned threads, std::vector<Result>& results) {
+  std::vector<FILE*> pipes;
+  for (int i = 0; i < count; ++i) {
+    const std::string command = "'" + self + "' --run '" + in + "' '" + dir + "/busy" +
+                                std::to_string(i) + ".pcd' ours model " + std::to_string(threads);
+    pipes.push_back(popen(command.c_str(), "r"));
+  }
+  results.assign(static_cast<std::size_t>(count), Result());
+  bool ok = true;
+  for (int i = 0; i < count; ++i) {
+    if (!pipes[i]) {
+      ok = false;
+      continue;
+    }
+    std::string line;
+    char buffer[1024];
+    while (std::fgets(buffer, sizeof buffer, pipes[i]))
+      line += buffer;
+    ok = pclose(pipes[i]) == 0 && ok;
+    pcl_ncut_seg_bench::parseFields(line, results[i]);
+    ok = ok && results[i].count("whole") > 0;
+    std::filesystem::remove(dir + "/busy" + std::to_string(i) + ".pcd");
+  }
+  return ok;
+}
+
+/// A busy machine: 1, 2 and 4 segmenters at once on the same cloud, each on the free cores
+/// (--threads 0), on every core whatever the load, and on one thread. Prints each setting's
+/// median whole time per process over the runs.
+void busyMachine(const std::string& self, const std::string& in, long cores, int runs) {
+  std::printf("\nA busy machine: P processes segment the hand's 181k points at once; whole time "
+              "per process, s\n%-9s %12s %12s %12s\n",
+              "processes", "free cores", "all cores", "one thread");
+  for (const int count : {1, 2, 4}) {
+    std::printf("%-9d", count);
+    for (const unsigned threads : {0u, static_cast<unsigned>(cores), 1u}) {
+      std::vector<double> times;
+      for (int r = 0; r < runs && !g_stop; ++r) {
+        std::vector<Result> each;
+        if (measureAtOnce(self, in, g_dir, count, threads, each))
+          for (const Result& one : each)
+            times.push_back(one.at("whole"));
+      }
+      if (times.empty()) {
+        std::printf(" %12s", "failed");
+        continue;
+      }
+      std::sort(times.begin(), times.end());
+      std::printf(" %12.3f", times[times.size() / 2]);
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+}
+
 /// Writes the cloud of `size` to `path` as a binary PCD (untimed); returns its points, 0 on
 /// failure.
 std::size_t writeCloud(const Size& size, const pcl_ncut_seg::TriangleMesh& bunny,
@@ -173,8 +234,6 @@ std::size_t writeCloud(const Size& size, const pcl_ncut_seg::TriangleMesh& bunny
   return cloud.size();
 }
 
-std::string g_dir;                     // the temporary directory, removed at exit
-volatile std::sig_atomic_t g_stop = 0; // Ctrl-C: stop after the current child, clean up
 void removeDir() {
   if (!g_dir.empty())
     std::filesystem::remove_all(g_dir);
@@ -362,5 +421,15 @@ int main(int argc, char** argv) {
       "Both keep freed memory for reuse, as the pcl_ncut_seg tool does (mallopt).\n"
       "Load average at the end %s.\n",
       base / 1e6, runs, loadAverage().c_str());
+  const std::string in = g_dir + "/busy.pcd";
+  if (!g_stop && writeCloud(kSizes[1], bunny, hand, in) > 0) {
+    busyMachine(self, in, cores, runs);
+    std::printf("Each process as in the table above (read, segment, write), all P started at\n"
+                "once; the median over the P processes of %d rounds. free cores: --threads 0,\n"
+                "the processors less the other processes' running threads when each phase\n"
+                "starts; all cores: --threads %ld, today's count on an idle machine.\n",
+                runs, cores);
+    std::filesystem::remove(in);
+  }
   return g_stop ? 1 : 0;
 }

@@ -167,7 +167,7 @@ struct BoundaryParams {
 
 /** \brief How the work runs; the result never depends on it. */
 struct ExecutionParams {
-  unsigned num_threads = 0; ///< 0: all cores (as PCL's OpenMP classes)
+  unsigned num_threads = 0; ///< 0: the cores free at each phase (all on an idle machine)
 };
 
 /** \brief All parameters, by stage. */

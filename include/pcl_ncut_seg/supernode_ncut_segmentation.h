@@ -205,8 +205,8 @@ public:
   /** \param[in] concavity  refinement.crease_split, > 0; std::nullopt: off */
   void setCreaseSplit(std::optional<double> concavity);
   std::optional<double> getCreaseSplit() const { return params_.refinement.crease_split; }
-  /** \param[in] threads  execution.num_threads; 0: all cores. The output does not depend on
-   * it. */
+  /** \param[in] threads  execution.num_threads; 0: the cores that other processes leave free
+   * when each phase starts (all of them on an idle machine). The output does not depend on it. */
   void setNumberOfThreads(unsigned threads);
   unsigned getNumberOfThreads() const { return params_.execution.num_threads; }
   /// \}

@@ -238,10 +238,12 @@ void boundaryRows(Rows& t) {
 
 /// Execution
 void executionRows(Rows& t) {
-  t.push_back(number<unsigned, unsigned>(
-      row("threads", "execution.num_threads", S::Execution, K::Integer, "N",
-          "threads; 0: all cores; the result does not depend on it", false),
-      atLeast(0), FIELD(execution.num_threads)));
+  t.push_back(number<unsigned, unsigned>(row("threads", "execution.num_threads", S::Execution,
+                                             K::Integer, "N",
+                                             "threads; 0: the cores free at each phase (all on an "
+                                             "idle machine); the result does not depend on it",
+                                             false),
+                                         atLeast(0), FIELD(execution.num_threads)));
 }
 
 } // namespace
