@@ -1,9 +1,12 @@
 #include "core/common/threads.h"
 
 #include <algorithm>
-#include <cstdio>
+#include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <dirent.h>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #ifdef _OPENMP
@@ -57,13 +60,34 @@ int otherRunningThreads() {
   return std::max(0, all - std::max(own, 1));
 }
 
+namespace {
+// otherRunningThreads() costs about 50 us (a file per thread of this process): a reading stays
+// good for a scheduler's few ticks, shared by every thread of the process.
+int recentOtherRunningThreads() {
+  using Clock = std::chrono::steady_clock;
+  constexpr std::int64_t kFreshFor =
+      std::chrono::nanoseconds(std::chrono::milliseconds(10)).count();
+  static std::atomic<std::int64_t> read_at{std::numeric_limits<std::int64_t>::min()};
+  static std::atomic<int> others{0};
+  const std::int64_t now =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch()).count();
+  const std::int64_t last = read_at.load(std::memory_order_acquire);
+  if (last != std::numeric_limits<std::int64_t>::min() && now - last < kFreshFor)
+    return others.load(std::memory_order_relaxed);
+  const int fresh = otherRunningThreads();
+  others.store(fresh, std::memory_order_relaxed);
+  read_at.store(now, std::memory_order_release);
+  return fresh;
+}
+} // namespace
+
 int usableThreads(unsigned requested) {
 #ifdef _OPENMP
   const int processors = std::max(omp_get_num_procs(), 1);
   if (requested > 0)
     return static_cast<int>(
         std::min<unsigned>(requested, std::max(processors, omp_get_max_threads())));
-  const int free_cores = processors - otherRunningThreads();
+  const int free_cores = processors - recentOtherRunningThreads();
   return std::clamp(free_cores, 1, std::max(omp_get_max_threads(), 1));
 #else
   (void)requested;

@@ -9,10 +9,10 @@ namespace pcl_ncut_seg {
 /// which would only cost memory (one work array per thread). 1 without OpenMP.
 ///
 /// 0 asks for the cores that are free now: the processors less the threads of other processes
-/// that are running (Linux's /proc/loadavg less this process's own running threads), at least
-/// 1. On a machine another job keeps busy, a phase then runs no slower than on one thread:
-/// more threads than free cores make each parallel loop wait for a thread that is not running.
-/// The labels do not depend on the count.
+/// that are running (Linux's /proc/loadavg less this process's own running threads, read at
+/// most every 10 ms), at least 1. On a machine another job keeps busy, a phase then runs no
+/// slower than on one thread: more threads than free cores make each parallel loop wait for a
+/// thread that is not running. The labels do not depend on the count.
 int usableThreads(unsigned requested);
 
 /// \brief The threads of other processes running at this instant, from /proc/loadavg and
