@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
     std::printf("\nPCL supervoxels + LCCP on the same clouds (results/peer_settings.csv's whole "
                 "row)\n");
     std::printf("%-10s %8s %8s %6s %10s %10s  %s\n", "model", "n", "LCCP s", "t", "default s",
-                "LCCP/ours", "load");
+                "ours/LCCP", "load");
     for (std::size_t i = 0; i < rows.size(); ++i) {
       Result r;
       if (!measure(self, data + "/models/" + rows[i].model, rows[i].n, "lccp", threads, r)) {
@@ -271,7 +271,7 @@ int main(int argc, char** argv) {
       const double ours =
           results["default"][i].count("total") ? results["default"][i]["total"] : NAN;
       std::printf("%-10s %8zu %8.3f %6.0f %10.3f %10.2f  %s\n", rows[i].label, rows[i].n,
-                  r["total"], r["t"], ours, r["total"] / ours, loadAverage().c_str());
+                  r["total"], r["t"], ours, ours / r["total"], loadAverage().c_str());
       std::fflush(stdout);
     }
   }

@@ -199,9 +199,9 @@ OursRun medianOurs(const pcl_ncut_seg::DepthView& view, unsigned threads, Form f
 /** One row: ours on one thread and on all cores, beside LCCP on the same valid points. */
 void printRow(const char* name, std::size_t points, const OursRun& one, const OursRun& all,
               unsigned cores, const Seconds& lccp, std::size_t lccp_segments) {
-  std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %zu / %zu\n", name, points,
-              one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall, lccp.cpu, one.segments,
-              lccp_segments);
+  std::printf("%-34s %7zu  %5.2f / %5.2f  %5.2f (%u)  %5.2f / %5.2f  %9.2f  %zu / %zu\n", name,
+              points, one.time.wall, one.time.cpu, all.time.wall, cores, lccp.wall, lccp.cpu,
+              one.time.wall / lccp.wall, one.segments, lccp_segments);
 }
 
 void measure(const char* name, const pcl_ncut_seg::DepthView& view, unsigned cores) {
@@ -255,8 +255,8 @@ int main(int argc, char** argv) {
               "max_points %s\n",
               pcl_ncut_seg::buildDescription(), pcl_ncut_seg_bench::loadAverage().c_str(),
               pcl_ncut_seg::parameterValue(g_params, "max_points").c_str());
-  std::printf("%-34s %7s  %13s  %10s  %13s  %s\n", "cloud", "points", "ours 1 thread", "ours all",
-              "LCCP", "segments ours / LCCP");
+  std::printf("%-34s %7s  %13s  %10s  %13s  %9s  %s\n", "cloud", "points", "ours 1 thread",
+              "ours all", "LCCP", "ours/LCCP", "segments ours / LCCP");
   const auto& o = object.pose.origin; // the object's centre is the origin
   char label[64];
   std::snprintf(label, sizeof label, "(a) bunny alone, 0.3 m at %.2f m",
@@ -268,7 +268,8 @@ int main(int argc, char** argv) {
       "cores: wall). Ours with the defaults on the organized cloud, then on its valid\n"
       "points alone (unorganized, sensor origin kept: a tabletop pipeline's crop); LCCP:\n"
       "PCL's normals, supervoxels and LCCP at results/peer_settings.csv's views row, on the valid\n"
-      "points (one thread). Segments: distinct labels. Below each cloud, ours' phases\n"
+      "points (one thread). ours/LCCP: wall time, both on one thread. Segments: distinct\n"
+      "labels. Below each cloud, ours' phases\n"
       "(wall seconds) on one thread and on all cores with the default kd-tree, on one\n"
       "thread with pcl::search::OrganizedNeighbor given to setSearchMethod(), and on the\n"
       "crop on one thread.\n",

@@ -50,7 +50,7 @@ class NearestInBall : public flann::ResultSet<float> {
 public:
   explicit NearestInBall(const float* xyz) : xyz_(xyz) {}
   void reset(float squared_radius, std::size_t excluded) {
-    best_ = squared_radius;
+    setBest(squared_radius);
     index_ = kNoPoint;
     excluded_ = excluded;
   }
@@ -58,13 +58,12 @@ public:
   void addPoint(float dist, std::size_t index) override {
     if (index == excluded_ || dist > best_ || (dist == best_ && !before(index)))
       return;
-    best_ = dist;
+    setBest(dist);
     index_ = index;
   }
-  /// A hair above the best, so that FLANN still offers points at the same distance.
-  float worstDist() const override {
-    return std::nextafter(best_, std::numeric_limits<float>::infinity());
-  }
+  /// A hair above the best, so that FLANN still offers points at the same distance. (FLANN
+  /// asks at every cell: kept, not computed.)
+  float worstDist() const override { return worst_; }
   static constexpr std::size_t kNoPoint = static_cast<std::size_t>(-1);
   std::size_t index_ = kNoPoint;
 
@@ -75,8 +74,12 @@ private:
     return std::lexicographical_compare(xyz_ + 3 * index, xyz_ + 3 * index + 3, xyz_ + 3 * index_,
                                         xyz_ + 3 * index_ + 3);
   }
+  void setBest(float best) {
+    best_ = best;
+    worst_ = std::nextafter(best, std::numeric_limits<float>::infinity());
+  }
   const float* xyz_;
-  float best_ = 0.0f;
+  float best_ = 0.0f, worst_ = 0.0f;
   std::size_t excluded_ = kNoPoint;
 };
 
