@@ -152,17 +152,17 @@ bool measure(const std::string& self, const std::string& in, const std::string& 
 std::string g_dir;                     // the temporary directory, removed at exit
 volatile std::sig_atomic_t g_stop = 0; // Ctrl-C: stop after the current child, clean up
 
-/// Parent: run `count` children at once on `in`, each with its own output file, and parse
-/// their lines; false when any failed.
-bool measureAtOnce(const std::string& self, const std::string& in, const std::string& dir,
-                   int count, unsigned threads, std::vector<Result>& results) {
+/// Parent: run `count` children at once on `in`, each with its own output file; the wall time
+/// from the first start to the last exit, NaN when any failed.
+double measureAtOnce(const std::string& self, const std::string& in, const std::string& dir,
+                     int count, unsigned threads) {
+  const double start = now();
   std::vector<FILE*> pipes;
   for (int i = 0; i < count; ++i) {
     const std::string command = "'" + self + "' --run '" + in + "' '" + dir + "/busy" +
                                 std::to_string(i) + ".pcd' ours model " + std::to_string(threads);
     pipes.push_back(popen(command.c_str(), "r"));
   }
-  results.assign(static_cast<std::size_t>(count), Result());
   bool ok = true;
   for (int i = 0; i < count; ++i) {
     if (!pipes[i]) {
@@ -173,39 +173,41 @@ bool measureAtOnce(const std::string& self, const std::string& in, const std::st
     char buffer[1024];
     while (std::fgets(buffer, sizeof buffer, pipes[i]))
       line += buffer;
-    ok = pclose(pipes[i]) == 0 && ok;
-    pcl_ncut_seg_bench::parseFields(line, results[i]);
-    ok = ok && results[i].count("whole") > 0;
-    std::filesystem::remove(dir + "/busy" + std::to_string(i) + ".pcd");
+    Result one;
+    pcl_ncut_seg_bench::parseFields(line, one);
+    ok = pclose(pipes[i]) == 0 && one.count("whole") > 0 && ok;
   }
-  return ok;
+  const double wall = now() - start;
+  for (int i = 0; i < count; ++i)
+    std::filesystem::remove(dir + "/busy" + std::to_string(i) + ".pcd");
+  return ok ? wall : NAN;
 }
 
 /// A busy machine: 1, 2 and 4 segmenters at once on the same cloud, each on the free cores
 /// (--threads 0), on every core whatever the load, and on one thread. Prints each setting's
-/// median whole time per process over the runs.
+/// median wall time over the rounds, from the first start to the last exit.
 void busyMachine(const std::string& self, const std::string& in, long cores, int runs) {
-  std::printf("\nA busy machine: P processes segment the hand's 181k points at once; whole time "
-              "per process, s\n%-9s %12s %12s %12s\n",
-              "processes", "free cores", "all cores", "one thread");
+  std::printf("\nA busy machine: P processes segment the hand's 181k points at once; wall time "
+              "until the last ends, s\n%-9s %12s %12s %12s %14s\n",
+              "processes", "free cores", "all cores", "one thread", "free/one");
   for (const int count : {1, 2, 4}) {
     std::printf("%-9d", count);
+    double median[3] = {NAN, NAN, NAN};
+    int column = 0;
     for (const unsigned threads : {0u, static_cast<unsigned>(cores), 1u}) {
-      std::vector<double> times;
+      std::vector<double> walls;
       for (int r = 0; r < runs && !g_stop; ++r) {
-        std::vector<Result> each;
-        if (measureAtOnce(self, in, g_dir, count, threads, each))
-          for (const Result& one : each)
-            times.push_back(one.at("whole"));
+        const double wall = measureAtOnce(self, in, g_dir, count, threads);
+        if (!std::isnan(wall))
+          walls.push_back(wall);
       }
-      if (times.empty()) {
-        std::printf(" %12s", "failed");
-        continue;
+      if (!walls.empty()) {
+        std::sort(walls.begin(), walls.end());
+        median[column] = walls[walls.size() / 2];
       }
-      std::sort(times.begin(), times.end());
-      std::printf(" %12.3f", times[times.size() / 2]);
+      std::printf(" %12.3f", median[column++]);
     }
-    std::printf("\n");
+    std::printf(" %14.2f\n", median[0] / median[2]);
     std::fflush(stdout);
   }
 }
@@ -425,9 +427,10 @@ int main(int argc, char** argv) {
   if (!g_stop && writeCloud(kSizes[1], bunny, hand, in) > 0) {
     busyMachine(self, in, cores, runs);
     std::printf("Each process as in the table above (read, segment, write), all P started at\n"
-                "once; the median over the P processes of %d rounds. free cores: --threads 0,\n"
-                "the processors less the other processes' running threads when each phase\n"
-                "starts; all cores: --threads %ld, today's count on an idle machine.\n",
+                "once; the median of %d rounds. free cores: --threads 0, the processors less the\n"
+                "other processes' running threads when each phase starts; all cores: --threads\n"
+                "%ld, the count of an idle machine whatever the load. free/one at most 1: the\n"
+                "library makes a loaded machine no slower than one thread each would.\n",
                 runs, cores);
     std::filesystem::remove(in);
   }
