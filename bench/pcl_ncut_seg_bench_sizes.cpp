@@ -139,12 +139,18 @@ int runOne(const std::string& in, const std::string& out, const std::string& met
 
 using pcl_ncut_seg_bench::Result;
 
+/// The command that runs one child (runOne) on `in`, writing `out`.
+std::string childCommand(const std::string& self, const std::string& in, const std::string& out,
+                         const std::string& method, bool view, unsigned threads) {
+  return "'" + self + "' --run '" + in + "' '" + out + "' " + method + " " +
+         (view ? "view" : "model") + " " + std::to_string(threads);
+}
+
 /// Parent: run a child on `in` and parse its line; the child's output file is removed.
 bool measure(const std::string& self, const std::string& in, const std::string& out,
              const std::string& method, bool view, unsigned threads, Result& result) {
-  const std::string command = "'" + self + "' --run '" + in + "' '" + out + "' " + method + " " +
-                              (view ? "view" : "model") + " " + std::to_string(threads);
-  const bool ran = pcl_ncut_seg_bench::runChild(command, result);
+  const bool ran =
+      pcl_ncut_seg_bench::runChild(childCommand(self, in, out, method, view, threads), result);
   std::filesystem::remove(out);
   return ran && result.count("whole") > 0;
 }
@@ -159,9 +165,8 @@ double measureAtOnce(const std::string& self, const std::string& in, const std::
   const double start = now();
   std::vector<FILE*> pipes;
   for (int i = 0; i < count; ++i) {
-    const std::string command = "'" + self + "' --run '" + in + "' '" + dir + "/busy" +
-                                std::to_string(i) + ".pcd' ours model " + std::to_string(threads);
-    pipes.push_back(popen(command.c_str(), "r"));
+    const std::string out = dir + "/busy" + std::to_string(i) + ".pcd";
+    pipes.push_back(popen(childCommand(self, in, out, "ours", false, threads).c_str(), "r"));
   }
   bool ok = true;
   for (int i = 0; i < count; ++i) {

@@ -50,17 +50,6 @@ int runningInThisProcess() {
   return running;
 }
 
-} // namespace
-
-int otherRunningThreads() {
-  const int all = runningSystemWide();
-  const int own = runningInThisProcess();
-  if (all < 0 || own < 0)
-    return 0;
-  return std::max(0, all - std::max(own, 1));
-}
-
-namespace {
 // otherRunningThreads() costs about 50 us (a file per thread of this process): a reading stays
 // good for a scheduler's few ticks, shared by every thread of the process.
 int recentOtherRunningThreads() {
@@ -79,7 +68,16 @@ int recentOtherRunningThreads() {
   read_at.store(now, std::memory_order_release);
   return fresh;
 }
+
 } // namespace
+
+int otherRunningThreads() {
+  const int all = runningSystemWide();
+  const int own = runningInThisProcess();
+  if (all < 0 || own < 0)
+    return 0;
+  return std::max(0, all - std::max(own, 1));
+}
 
 int usableThreads(unsigned requested) {
 #ifdef _OPENMP
